@@ -1,0 +1,22 @@
+//! # maps — the orbital map side of solsim
+//!
+//! - [`raster`]: georeferenced rasters ([`GeoTransform`], [`Raster`]); conventions for map metres
+//!   (x east, y north) and pixel rows (row 0 = north edge) live there, once.
+//! - [`terrain`]: terrain classes ([`TerrainClass`]: sand, soil, bedrock).
+//! - [`raster_io`]: PNG and GeoTIFF readers and writers (appearance u8, DEM as 16-bit cm or f32 m,
+//!   terrain class u8) and [`MapLayers`], the three layers of one map.
+//! - [`procedural`]: the seeded terrain generator the bundled scenario maps come from.
+//! - [`zone`]: keep-in / keep-out zones ([`ZoneSet`]) read from GeoJSON, with exact distance
+//!   queries (how far a point is from the nearest keep-out and from the keep-in edge).
+#![warn(missing_docs)]
+
+pub mod procedural;
+pub mod raster;
+pub mod raster_io;
+pub mod terrain;
+pub mod zone;
+
+pub use raster::{GeoTransform, Raster};
+pub use raster_io::{MapLayers, RasterError};
+pub use terrain::TerrainClass;
+pub use zone::{ZoneError, ZoneKind, ZoneSet};

@@ -1,0 +1,333 @@
+//! The landforms summed into the DEM: fBm relief, craters, ridges and dune ripples.
+//!
+//! Craters and ridges are drawn once, serially, from `ChaCha8Rng::seed_from_u64(seed)` (stream
+//! 0 for craters, stream 1 for ridges, so changing the crater density does not move the
+//! ridges). After that, the height of a map point is a pure function of its position.
+
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+use super::noise::{Fbm, gradient, sub_seed};
+use super::{DuneField, TerrainParams};
+
+/// Coarsest relief wavelength, metres; octaves halve it down to 25 m.
+const RELIEF_WAVELENGTH_M: f64 = 400.0;
+const RELIEF_OCTAVES: usize = 5;
+/// Decimetre-scale roughness so slopes and shading are never perfectly smooth.
+const ROUGHNESS_WAVELENGTH_M: f64 = 8.0;
+const ROUGHNESS_M: f64 = 0.15;
+/// Ejecta falls off as (r/R)⁻³ and is cut at this many crater radii.
+const EJECTA_REACH: f64 = 3.0;
+/// Cap on the crater count, so a huge density cannot exhaust memory.
+const MAX_CRATERS: usize = 200_000;
+/// Crater bins are this many pixels square.
+const BIN_PX: usize = 32;
+/// Largest sideways wander of a ridge crest, metres.
+const RIDGE_MEANDER_M: f64 = 12.0;
+
+/// Salts of the noise fields drawn from the master seed.
+pub(super) const SALT_RELIEF: u64 = 1;
+const SALT_ROUGHNESS: u64 = 2;
+const SALT_RIDGE: u64 = 3;
+const SALT_DUNE: u64 = 4;
+
+/// A simple crater: parabolic bowl inside the rim, ejecta blanket outside.
+#[derive(Clone, Debug)]
+struct Crater {
+    x_m: f64,
+    y_m: f64,
+    radius_m: f64,
+    /// Floor depth below the rim crest.
+    depth_m: f64,
+    /// Rim crest height above the surroundings.
+    rim_m: f64,
+}
+
+impl Crater {
+    fn height_m(&self, x_m: f64, y_m: f64) -> f64 {
+        let (dx, dy) = (x_m - self.x_m, y_m - self.y_m);
+        let q2 = (dx * dx + dy * dy) / (self.radius_m * self.radius_m);
+        if q2 >= EJECTA_REACH * EJECTA_REACH {
+            0.0
+        } else if q2 < 1.0 {
+            self.rim_m - self.depth_m * (1.0 - q2)
+        } else {
+            let q3 = q2 * q2.sqrt();
+            let floor = 1.0 / EJECTA_REACH.powi(3);
+            self.rim_m * (1.0 / q3 - floor) / (1.0 - floor)
+        }
+    }
+}
+
+/// A long linear ridge with a smooth cross-section, tapered ends and a wandering crest.
+#[derive(Clone, Debug)]
+struct Ridge {
+    start_m: [f64; 2],
+    /// Unit vector along the ridge.
+    dir: [f64; 2],
+    length_m: f64,
+    half_width_m: f64,
+    height_m: f64,
+    seed: u64,
+    /// Axis-aligned bounds `[min_x, min_y, max_x, max_y]` of everything the ridge touches.
+    bounds_m: [f64; 4],
+}
+
+impl Ridge {
+    fn height_at(&self, x_m: f64, y_m: f64) -> f64 {
+        let [x0, y0, x1, y1] = self.bounds_m;
+        if x_m < x0 || x_m > x1 || y_m < y0 || y_m > y1 {
+            return 0.0;
+        }
+        let (dx, dy) = (x_m - self.start_m[0], y_m - self.start_m[1]);
+        let along = dx * self.dir[0] + dy * self.dir[1];
+        if !(0.0..=self.length_m).contains(&along) {
+            return 0.0;
+        }
+        let straight = dx * self.dir[1] - dy * self.dir[0];
+        if straight.abs() >= self.half_width_m + RIDGE_MEANDER_M {
+            return 0.0;
+        }
+        let across = straight + RIDGE_MEANDER_M * gradient(self.seed, along / 250.0, 0.5);
+        let s = across / self.half_width_m;
+        if s.abs() >= 1.0 {
+            return 0.0;
+        }
+        let bump = (1.0 - s * s) * (1.0 - s * s);
+        let end = (along.min(self.length_m - along) / (0.15 * self.length_m)).min(1.0);
+        let vary = 0.75 + 0.25 * gradient(self.seed, along / 80.0, 3.5);
+        self.height_m * bump * smoothstep(end) * vary
+    }
+}
+
+/// One dune field's derived constants.
+#[derive(Clone, Debug)]
+struct Dunes {
+    field: DuneField,
+    /// Unit vector across the crests (the direction the ripple pattern repeats).
+    across: [f64; 2],
+    seed: u64,
+}
+
+impl Dunes {
+    /// Ripple height and whether the point is inside the field.
+    fn at(&self, x_m: f64, y_m: f64) -> (f64, bool) {
+        let f = &self.field;
+        let (dx, dy) = (x_m - f.center_m[0], y_m - f.center_m[1]);
+        let d2 = dx * dx + dy * dy;
+        if !(d2 < f.radius_m * f.radius_m) {
+            return (0.0, false);
+        }
+        if !(f.wavelength_m > 0.0) {
+            return (0.0, true);
+        }
+        let wl = f.wavelength_m;
+        // Sinuous crests: warp the phase with smooth noise a few wavelengths across.
+        let phase = (dx * self.across[0] + dy * self.across[1]) / wl
+            + 0.35 * gradient(self.seed, x_m / (4.0 * wl), y_m / (4.0 * wl));
+        let t = phase - phase.floor();
+        // Gentle stoss side (65 % of a wavelength), steep lee side near the angle of repose.
+        let profile = if t < 0.65 {
+            smoothstep(t / 0.65)
+        } else {
+            smoothstep((1.0 - t) / 0.35)
+        };
+        let taper = smoothstep(((f.radius_m - d2.sqrt()) / (0.2 * f.radius_m)).min(1.0));
+        (f.amplitude_m * (2.0 * profile - 1.0) * taper, true)
+    }
+}
+
+/// Everything that shapes the DEM, ready to evaluate at any map point.
+pub(super) struct Landforms {
+    base_m: f64,
+    relief_m: f64,
+    relief: Fbm,
+    roughness: Fbm,
+    craters: Vec<Crater>,
+    /// Crater indices per bin, CSR layout: bin `b` holds `bin_items[bin_start[b]..bin_start[b + 1]]`.
+    bin_start: Vec<u32>,
+    bin_items: Vec<u32>,
+    bins_x: usize,
+    ridges: Vec<Ridge>,
+    dunes: Vec<Dunes>,
+    /// Sand patches as (centre, radius²).
+    patches: Vec<([f64; 2], f64)>,
+}
+
+impl Landforms {
+    /// Draws craters and ridges for `p` (already sanitised by the caller).
+    pub(super) fn new(p: &TerrainParams) -> Self {
+        let (w, h) = (p.width_px, p.height_px);
+        let res = p.geo.resolution_m_per_px;
+        let [ox, oy] = p.geo.origin_m;
+        let (width_m, height_m) = (w as f64 * res, h as f64 * res);
+
+        // Craters over the map plus a margin, so edge craters are cut, not missing.
+        let r_min = p.crater_radius_min_m.max(0.01);
+        let r_max = p.crater_radius_max_m.max(r_min);
+        let margin = EJECTA_REACH * r_max;
+        let (area_w, area_h) = (width_m + 2.0 * margin, height_m + 2.0 * margin);
+        let mut rng = ChaCha8Rng::seed_from_u64(p.seed);
+        let expected = p.crater_density_per_km2.max(0.0) * area_w * area_h * 1e-6;
+        let n = (expected.floor() + f64::from(u8::from(rng.random::<f64>() < expected.fract())))
+            as usize;
+        let craters: Vec<Crater> = (0..n.min(MAX_CRATERS))
+            .map(|_| {
+                let x_m = ox - margin + rng.random::<f64>() * area_w;
+                let y_m = oy + margin - rng.random::<f64>() * area_h;
+                // Truncated power law, cumulative N(>r) ∝ r⁻²: many small, few large.
+                let u: f64 = rng.random();
+                let k = 1.0 - (r_min / r_max).powi(2);
+                let radius_m = r_min / (1.0 - u * k).sqrt();
+                // Depth/diameter from 0.2 (fresh) down to 0.08 (degraded); rim ≈ 0.2 × depth.
+                let depth_m = (0.08 + 0.12 * rng.random::<f64>()) * 2.0 * radius_m;
+                Crater {
+                    x_m,
+                    y_m,
+                    radius_m,
+                    depth_m,
+                    rim_m: 0.2 * depth_m,
+                }
+            })
+            .collect();
+
+        let bins_x = w.div_ceil(BIN_PX).max(1);
+        let bins_y = h.div_ceil(BIN_PX).max(1);
+        let mut bins: Vec<Vec<u32>> = vec![Vec::new(); bins_x * bins_y];
+        for (i, c) in craters.iter().enumerate() {
+            let reach = EJECTA_REACH * c.radius_m;
+            let (c0, r0) = p.geo.pixel_of(c.x_m - reach, c.y_m + reach);
+            let (c1, r1) = p.geo.pixel_of(c.x_m + reach, c.y_m - reach);
+            let to_bin = |v: f64, n: usize| ((v.max(0.0) / BIN_PX as f64) as usize).min(n - 1);
+            if c1 < 0.0 || r1 < 0.0 || c0 > w as f64 || r0 > h as f64 {
+                continue;
+            }
+            for by in to_bin(r0, bins_y)..=to_bin(r1, bins_y) {
+                for bx in to_bin(c0, bins_x)..=to_bin(c1, bins_x) {
+                    bins[by * bins_x + bx].push(i as u32);
+                }
+            }
+        }
+        let mut bin_start = Vec::with_capacity(bins.len() + 1);
+        let mut bin_items = Vec::new();
+        bin_start.push(0);
+        for b in &bins {
+            bin_items.extend_from_slice(b);
+            bin_start.push(bin_items.len() as u32);
+        }
+
+        let mut rng = ChaCha8Rng::seed_from_u64(p.seed);
+        rng.set_stream(1);
+        let diag_m = width_m.hypot(height_m);
+        let ridges = (0..p.ridge_count)
+            .map(|i| {
+                let centre = [
+                    ox + rng.random::<f64>() * width_m,
+                    oy - rng.random::<f64>() * height_m,
+                ];
+                let az = rng.random::<f64>() * std::f64::consts::PI;
+                let dir = [az.sin(), az.cos()];
+                let length_m = (0.3 + 0.5 * rng.random::<f64>()) * diag_m;
+                let half_width_m = 10.0 + 15.0 * rng.random::<f64>();
+                let height_m = p.ridge_height_m * (0.6 + 0.8 * rng.random::<f64>());
+                let start_m = [
+                    centre[0] - 0.5 * length_m * dir[0],
+                    centre[1] - 0.5 * length_m * dir[1],
+                ];
+                let end = [
+                    start_m[0] + length_m * dir[0],
+                    start_m[1] + length_m * dir[1],
+                ];
+                let pad = half_width_m + RIDGE_MEANDER_M;
+                let bounds_m = [
+                    start_m[0].min(end[0]) - pad,
+                    start_m[1].min(end[1]) - pad,
+                    start_m[0].max(end[0]) + pad,
+                    start_m[1].max(end[1]) + pad,
+                ];
+                let seed = sub_seed(p.seed, SALT_RIDGE + 16 * i as u64);
+                Ridge {
+                    start_m,
+                    dir,
+                    length_m,
+                    half_width_m,
+                    height_m,
+                    seed,
+                    bounds_m,
+                }
+            })
+            .collect();
+
+        let dunes = p
+            .dune_fields
+            .iter()
+            .enumerate()
+            .map(|(i, f)| {
+                let az = f.crest_azimuth_deg.to_radians();
+                Dunes {
+                    field: f.clone(),
+                    across: [az.cos(), -az.sin()],
+                    seed: sub_seed(p.seed, SALT_DUNE + 16 * i as u64),
+                }
+            })
+            .collect();
+
+        Self {
+            base_m: p.base_height_m,
+            relief_m: p.relief_m,
+            relief: Fbm::new(
+                sub_seed(p.seed, SALT_RELIEF),
+                RELIEF_WAVELENGTH_M,
+                RELIEF_OCTAVES,
+            ),
+            roughness: Fbm::new(sub_seed(p.seed, SALT_ROUGHNESS), ROUGHNESS_WAVELENGTH_M, 2),
+            craters,
+            bin_start,
+            bin_items,
+            bins_x,
+            ridges,
+            dunes,
+            patches: p.sand_patches.iter().map(|&(c, r)| (c, r * r)).collect(),
+        }
+    }
+
+    /// Height (m, before clamping) at map point `(x_m, y_m)` in pixel `(col, row)`, and
+    /// whether the point is forced to sand (dune field or sand patch).
+    pub(super) fn at(&self, x_m: f64, y_m: f64, col: usize, row: usize) -> (f64, bool) {
+        let mut z = self.base_m
+            + self.relief_m * self.relief.at(x_m, y_m)
+            + ROUGHNESS_M * self.roughness.at(x_m, y_m);
+        let bin = (row / BIN_PX) * self.bins_x + col / BIN_PX;
+        if let (Some(&a), Some(&b)) = (self.bin_start.get(bin), self.bin_start.get(bin + 1)) {
+            for &i in &self.bin_items[a as usize..b as usize] {
+                z += self.craters[i as usize].height_m(x_m, y_m);
+            }
+        }
+        for r in &self.ridges {
+            z += r.height_at(x_m, y_m);
+        }
+        let mut sand = false;
+        for d in &self.dunes {
+            let (dz, inside) = d.at(x_m, y_m);
+            z += dz;
+            sand |= inside;
+        }
+        for &(c, r2) in &self.patches {
+            let (dx, dy) = (x_m - c[0], y_m - c[1]);
+            sand |= dx * dx + dy * dy < r2;
+        }
+        (z, sand)
+    }
+
+    #[cfg(test)]
+    /// Number of craters drawn (including those only partly on the map).
+    pub(super) fn crater_count(&self) -> usize {
+        self.craters.len()
+    }
+}
+
+/// Cubic ease from 0 at `t ≤ 0` to 1 at `t ≥ 1`.
+pub(super) fn smoothstep(t: f64) -> f64 {
+    let t = t.clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}

@@ -1,0 +1,536 @@
+//! GeoTIFF: single-band u8 / u16 / f32 with the georeference in the standard GeoTIFF tags.
+//!
+//! Written files carry `ModelPixelScaleTag` (33550) = `(res, res, 0)`, `ModelTiepointTag`
+//! (33922) tying raster point (0, 0) — the north-west corner of pixel (0, 0), PixelIsArea — to
+//! `origin_m`, and a minimal `GeoKeyDirectoryTag` (34735): projected model, PixelIsArea,
+//! user-defined projected CRS, metre units, plus a citation. Data are Deflate-compressed
+//! (horizontal predictor for integers).
+//!
+//! Readers accept what GDAL writes for north-up grids: a tiepoint at any raster point,
+//! PixelIsPoint (shifted by half a pixel to the corner convention), or a
+//! `ModelTransformationTag` without rotation. They reject rotated, sheared, flipped,
+//! non-square and geographic (degree) georeferences, and ground-control-point sets.
+//!
+//! ## References
+//! OGC GeoTIFF Standard 1.1 (OGC 19-008r4), §7 (raster space, PixelIsArea / PixelIsPoint) and
+//! Annex B (GeoKey codes).
+
+use std::fs::File;
+use std::io::{BufReader, BufWriter, Read, Seek};
+use std::path::Path;
+
+use tiff::decoder::{Decoder, DecodingResult, Limits};
+use tiff::encoder::colortype::{self, ColorType as EncColorType};
+use tiff::encoder::{Compression, DeflateLevel, Predictor, TiffEncoder, TiffValue};
+use tiff::tags::Tag;
+use tiff::{ColorType, TiffError};
+
+use super::sealed::{Samples, SamplesRef};
+use super::{RasterError, Sample, check_geo, check_shape, io_error, read_io_error, write_atomic};
+use crate::raster::{GeoTransform, Raster};
+
+/// Largest decoded image accepted, so a corrupt header cannot exhaust memory.
+const MAX_DECODED_BYTES: usize = 2 << 30;
+
+/// GeoKey ids and values used here (GeoTIFF 1.1 Annex B).
+const GT_MODEL_TYPE: u16 = 1024;
+const GT_RASTER_TYPE: u16 = 1025;
+const GT_CITATION: u16 = 1026;
+const PROJECTED_CS_TYPE: u16 = 3072;
+const PROJ_LINEAR_UNITS: u16 = 3076;
+const MODEL_TYPE_PROJECTED: u16 = 1;
+const MODEL_TYPE_GEOGRAPHIC: u16 = 2;
+const RASTER_PIXEL_IS_AREA: u16 = 1;
+const RASTER_PIXEL_IS_POINT: u16 = 2;
+const USER_DEFINED: u16 = 32767;
+const LINEAR_METRE: u16 = 9001;
+const GEO_ASCII_PARAMS_TAG: u16 = 34737;
+
+/// Citation stored in `GeoAsciiParamsTag` (`|` ends each GeoTIFF ASCII parameter).
+const CITATION: &str = "solsim local map frame (metres, x east, y north)|";
+
+/// The GeoKey directory written to every file: header, then (key, location, count, value).
+#[rustfmt::skip]
+const GEO_KEYS: [u16; 24] = [
+    1, 1, 0, 5, // version 1.1.0, five keys
+    GT_MODEL_TYPE, 0, 1, MODEL_TYPE_PROJECTED,
+    GT_RASTER_TYPE, 0, 1, RASTER_PIXEL_IS_AREA,
+    GT_CITATION, GEO_ASCII_PARAMS_TAG, CITATION.len() as u16, 0,
+    PROJECTED_CS_TYPE, 0, 1, USER_DEFINED,
+    PROJ_LINEAR_UNITS, 0, 1, LINEAR_METRE,
+];
+
+/// A raster read from a GeoTIFF, with the file's no-data value.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GeoTiff<T> {
+    /// The samples, placed by the file's georeference (or the caller's override).
+    pub raster: Raster<T>,
+    /// The `GDAL_NODATA` (42113) value, if the file declares one.
+    pub nodata: Option<f64>,
+}
+
+/// Sample types a GeoTIFF may hold here.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Kind {
+    U8,
+    U16,
+    F32,
+}
+
+/// A decoded file before it is narrowed to one sample type.
+pub(super) struct RawTiff {
+    pub samples: Samples,
+    pub width: usize,
+    pub height: usize,
+    pub geo: GeoTransform,
+    pub nodata: Option<f64>,
+}
+
+/// Reads a single-band GeoTIFF of `T` (`u8`, `u16` unsigned, or `f32`).
+///
+/// The georeference comes from the file's tags unless `georef` overrides it (the tags are then
+/// not read at all). Only the first image of the file is read.
+///
+/// # Errors
+/// [`RasterError::WrongSampleFormat`] for another band count, bit depth or number type;
+/// [`RasterError::MissingGeoreference`] / [`RasterError::BadGeoreference`] without a usable
+/// north-up georeference; [`RasterError::BadNodata`] for a non-numeric `GDAL_NODATA`;
+/// [`RasterError::Io`] / [`RasterError::Decode`] for unreadable files.
+pub fn read_geotiff<T: Sample>(
+    path: &Path,
+    georef: Option<GeoTransform>,
+) -> Result<GeoTiff<T>, RasterError> {
+    let want = kind_of::<T>();
+    let raw = read_samples(path, georef, T::EXPECTED, |k| k == want)?;
+    let data = T::from_samples(raw.samples).ok_or_else(|| RasterError::Decode {
+        path: path.to_path_buf(),
+        detail: "decoded samples do not match the declared sample format".to_owned(),
+    })?;
+    Ok(GeoTiff {
+        raster: Raster {
+            width: raw.width,
+            height: raw.height,
+            geo: raw.geo,
+            data,
+        },
+        nodata: raw.nodata,
+    })
+}
+
+/// Writes a single-band GeoTIFF atomically, Deflate-compressed, georeferenced by `raster.geo`,
+/// with `GDAL_NODATA` when `nodata` is given.
+///
+/// # Errors
+/// [`RasterError::EmptyRaster`] / [`RasterError::DataLength`] for a malformed raster,
+/// [`RasterError::BadGeoreference`] for a non-finite origin or non-positive pixel size,
+/// [`RasterError::Io`] / [`RasterError::Encode`] when writing fails.
+pub fn write_geotiff<T: Sample>(
+    path: &Path,
+    raster: &Raster<T>,
+    nodata: Option<f64>,
+) -> Result<(), RasterError> {
+    check_shape(path, raster)?;
+    check_geo(path, &raster.geo)?;
+    let too_big = |_| RasterError::Encode {
+        path: path.to_path_buf(),
+        detail: format!(
+            "{}x{} px exceeds the TIFF limit of 2^32 - 1 px per side",
+            raster.width, raster.height
+        ),
+    };
+    let w = u32::try_from(raster.width).map_err(too_big)?;
+    let h = u32::try_from(raster.height).map_err(too_big)?;
+    let nodata_text = nodata.map(|v| format!("{v}"));
+    let head = Header {
+        path,
+        w,
+        h,
+        geo: raster.geo,
+        nodata: nodata_text.as_deref(),
+    };
+    write_atomic(path, |out| match T::as_samples(&raster.data) {
+        SamplesRef::U8(d) => encode::<colortype::Gray8>(out, &head, d, Predictor::Horizontal),
+        SamplesRef::U16(d) => encode::<colortype::Gray16>(out, &head, d, Predictor::Horizontal),
+        // The tiff crate cannot write the floating-point predictor.
+        SamplesRef::F32(d) => encode::<colortype::Gray32Float>(out, &head, d, Predictor::None),
+    })
+}
+
+/// What every image directory carries besides the samples.
+struct Header<'a> {
+    path: &'a Path,
+    w: u32,
+    h: u32,
+    geo: GeoTransform,
+    nodata: Option<&'a str>,
+}
+
+fn encode<C: EncColorType>(
+    out: &mut BufWriter<File>,
+    head: &Header<'_>,
+    data: &[C::Inner],
+    predictor: Predictor,
+) -> Result<(), RasterError>
+where
+    [C::Inner]: TiffValue,
+{
+    let err = tiff_error(head.path, false);
+    let res = head.geo.resolution_m_per_px;
+    let [ox, oy] = head.geo.origin_m;
+    let mut enc = TiffEncoder::new(out)
+        .map_err(&err)?
+        .with_compression(Compression::Deflate(DeflateLevel::Balanced))
+        .with_predictor(predictor);
+    let mut image = enc.new_image::<C>(head.w, head.h).map_err(&err)?;
+    let dir = image.encoder();
+    dir.write_tag(Tag::ModelPixelScaleTag, &[res, res, 0.0][..])
+        .map_err(&err)?;
+    dir.write_tag(Tag::ModelTiepointTag, &[0.0, 0.0, 0.0, ox, oy, 0.0][..])
+        .map_err(&err)?;
+    dir.write_tag(Tag::GeoKeyDirectoryTag, &GEO_KEYS[..])
+        .map_err(&err)?;
+    dir.write_tag(Tag::GeoAsciiParamsTag, CITATION)
+        .map_err(&err)?;
+    if let Some(text) = head.nodata {
+        dir.write_tag(Tag::GdalNodata, text).map_err(&err)?;
+    }
+    image.write_data(data).map_err(&err)
+}
+
+fn kind_of<T: Sample>() -> Kind {
+    match T::as_samples(&[]) {
+        SamplesRef::U8(_) => Kind::U8,
+        SamplesRef::U16(_) => Kind::U16,
+        SamplesRef::F32(_) => Kind::F32,
+    }
+}
+
+/// Maps a tiff error to [`RasterError::Io`], or to `Decode` / `Encode` as `decoding` says.
+fn tiff_error(path: &Path, decoding: bool) -> impl Fn(TiffError) -> RasterError + '_ {
+    move |e| match e {
+        TiffError::IoError(source) if decoding => read_io_error(path, source),
+        TiffError::IoError(source) => RasterError::Io {
+            path: path.to_path_buf(),
+            source,
+        },
+        other if decoding => RasterError::Decode {
+            path: path.to_path_buf(),
+            detail: other.to_string(),
+        },
+        other => RasterError::Encode {
+            path: path.to_path_buf(),
+            detail: other.to_string(),
+        },
+    }
+}
+
+/// Reads the first image of a GeoTIFF whose sample kind `accept` allows (`expected` describes
+/// what is allowed, for the error), with its georeference (or `georef`) and no-data value.
+pub(super) fn read_samples(
+    path: &Path,
+    georef: Option<GeoTransform>,
+    expected: &'static str,
+    accept: impl Fn(Kind) -> bool,
+) -> Result<RawTiff, RasterError> {
+    let err = tiff_error(path, true);
+    let file = File::open(path).map_err(io_error(path))?;
+    let mut limits = Limits::default();
+    limits.decoding_buffer_size = MAX_DECODED_BYTES;
+    let mut dec = Decoder::new(BufReader::new(file))
+        .map_err(&err)?
+        .with_limits(limits);
+    let (w, h) = dec.dimensions().map_err(&err)?;
+    let color = dec.colortype().map_err(&err)?;
+    let format = dec
+        .find_tag_unsigned_vec::<u16>(Tag::SampleFormat)
+        .map_err(&err)?
+        .and_then(|v| v.first().copied())
+        .unwrap_or(1);
+    let kind = match (color, format) {
+        (ColorType::Gray(8), 1) => Some(Kind::U8),
+        (ColorType::Gray(16), 1) => Some(Kind::U16),
+        (ColorType::Gray(32), 3) => Some(Kind::F32),
+        _ => None,
+    };
+    if !kind.is_some_and(&accept) {
+        return Err(RasterError::WrongSampleFormat {
+            path: path.to_path_buf(),
+            expected,
+            found: describe(color, format),
+        });
+    }
+    let geo = match georef {
+        Some(g) => {
+            check_geo(path, &g)?;
+            g
+        }
+        None => read_georef(&mut dec, path)?,
+    };
+    let nodata = read_nodata(&mut dec, path)?;
+    let samples = match dec.read_image().map_err(&err)? {
+        DecodingResult::U8(v) => Samples::U8(v),
+        DecodingResult::U16(v) => Samples::U16(v),
+        DecodingResult::F32(v) => Samples::F32(v),
+        _ => {
+            return Err(RasterError::WrongSampleFormat {
+                path: path.to_path_buf(),
+                expected,
+                found: describe(color, format),
+            });
+        }
+    };
+    let (width, height) = (w as usize, h as usize);
+    let len = match &samples {
+        Samples::U8(v) => v.len(),
+        Samples::U16(v) => v.len(),
+        Samples::F32(v) => v.len(),
+    };
+    if len != width * height {
+        return Err(RasterError::Decode {
+            path: path.to_path_buf(),
+            detail: format!("{len} samples decoded for {width}x{height} px"),
+        });
+    }
+    Ok(RawTiff {
+        samples,
+        width,
+        height,
+        geo,
+        nodata,
+    })
+}
+
+/// Human description of a TIFF sample layout, e.g. `8-bit unsigned RGB`.
+fn describe(color: ColorType, sample_format: u16) -> String {
+    let number = match sample_format {
+        1 => "unsigned".to_owned(),
+        2 => "signed".to_owned(),
+        3 => "float".to_owned(),
+        n => format!("sample-format-{n}"),
+    };
+    let layout = match color {
+        ColorType::Gray(_) => "gray".to_owned(),
+        ColorType::RGB(_) => "RGB".to_owned(),
+        ColorType::Palette(_) => "palette".to_owned(),
+        ColorType::GrayA(_) => "gray + alpha".to_owned(),
+        ColorType::RGBA(_) => "RGBA".to_owned(),
+        ColorType::CMYK(_) => "CMYK".to_owned(),
+        ColorType::CMYKA(_) => "CMYK + alpha".to_owned(),
+        ColorType::YCbCr(_) => "YCbCr".to_owned(),
+        ColorType::Lab(_) => "CIE Lab".to_owned(),
+        ColorType::Multiband { num_samples, .. } => format!("{num_samples}-band"),
+        _ => format!("{color:?}"),
+    };
+    format!("{}-bit {number} {layout}", color.bit_depth())
+}
+
+/// The GeoKeys this reader interprets (all optional).
+#[derive(Default)]
+struct GeoKeys {
+    model_type: Option<u16>,
+    raster_type: Option<u16>,
+    linear_units: Option<u16>,
+}
+
+fn read_geokeys<R: Read + Seek>(dec: &mut Decoder<R>, path: &Path) -> Result<GeoKeys, RasterError> {
+    let bad = |detail: String| RasterError::BadGeoreference {
+        path: path.to_path_buf(),
+        detail,
+    };
+    let Some(value) = dec
+        .find_tag(Tag::GeoKeyDirectoryTag)
+        .map_err(tiff_error(path, true))?
+    else {
+        return Ok(GeoKeys::default());
+    };
+    let dir = value.into_u16_vec().map_err(|e| {
+        bad(format!(
+            "a GeoKeyDirectory that is not a list of shorts ({e})"
+        ))
+    })?;
+    let n = usize::from(dir.get(3).copied().unwrap_or(0));
+    if dir.len() < 4 || dir.len() < 4 + 4 * n {
+        return Err(bad(format!(
+            "a truncated GeoKeyDirectory ({} values for {n} keys)",
+            dir.len()
+        )));
+    }
+    let mut keys = GeoKeys::default();
+    for entry in dir[4..4 + 4 * n].chunks_exact(4) {
+        // Location 0 means the value is stored inline; the keys read here are always inline.
+        let (id, location, value) = (entry[0], entry[1], entry[3]);
+        let slot = match id {
+            GT_MODEL_TYPE => &mut keys.model_type,
+            GT_RASTER_TYPE => &mut keys.raster_type,
+            PROJ_LINEAR_UNITS => &mut keys.linear_units,
+            _ => continue,
+        };
+        if location == 0 {
+            *slot = Some(value);
+        }
+    }
+    Ok(keys)
+}
+
+fn read_f64s<R: Read + Seek>(
+    dec: &mut Decoder<R>,
+    path: &Path,
+    tag: Tag,
+) -> Result<Option<Vec<f64>>, RasterError> {
+    let Some(value) = dec.find_tag(tag).map_err(tiff_error(path, true))? else {
+        return Ok(None);
+    };
+    let values = value
+        .into_f64_vec()
+        .map_err(|e| RasterError::BadGeoreference {
+            path: path.to_path_buf(),
+            detail: format!("{tag:?} that is not a list of numbers ({e})"),
+        })?;
+    Ok(Some(values))
+}
+
+/// The north-up square-pixel transform described by the file's GeoTIFF tags.
+fn read_georef<R: Read + Seek>(
+    dec: &mut Decoder<R>,
+    path: &Path,
+) -> Result<GeoTransform, RasterError> {
+    let bad = |detail: String| RasterError::BadGeoreference {
+        path: path.to_path_buf(),
+        detail,
+    };
+    let keys = read_geokeys(dec, path)?;
+    if keys.model_type == Some(MODEL_TYPE_GEOGRAPHIC) {
+        return Err(bad(
+            "a geographic CRS in degrees (GTModelTypeGeoKey = 2); reproject to metres first"
+                .to_owned(),
+        ));
+    }
+    if let Some(units) = keys.linear_units.filter(|&u| u != LINEAR_METRE) {
+        return Err(bad(format!(
+            "ProjLinearUnitsGeoKey = {units} (only 9001, metre, is supported)"
+        )));
+    }
+    let scale = read_f64s(dec, path, Tag::ModelPixelScaleTag)?;
+    let ties = read_f64s(dec, path, Tag::ModelTiepointTag)?;
+    let matrix = read_f64s(dec, path, Tag::ModelTransformationTag)?;
+    let (mut ox, mut oy, res) = match (scale, ties, matrix) {
+        (Some(scale), Some(ties), _) => {
+            let (sx, sy) = match scale.as_slice() {
+                [sx, sy, ..] => (*sx, *sy),
+                _ => {
+                    return Err(bad(format!(
+                        "a ModelPixelScale with {} values (need 3)",
+                        scale.len()
+                    )));
+                }
+            };
+            if !(sx.is_finite() && sy.is_finite() && sx > 0.0 && sy > 0.0) {
+                return Err(bad(format!(
+                    "ModelPixelScale ({sx}, {sy}) (need two positive numbers; negative means flipped)"
+                )));
+            }
+            check_square(sx, sy).map_err(bad)?;
+            if ties.is_empty() || ties.len() % 6 != 0 {
+                return Err(bad(format!(
+                    "a ModelTiepoint with {} values (need 6 per tiepoint)",
+                    ties.len()
+                )));
+            }
+            // Tiepoint (I, J, K, X, Y, Z): raster point (I, J) lies at map (X, Y).
+            let (i, j, x, y) = (ties[0], ties[1], ties[3], ties[4]);
+            let (ox, oy) = (x - i * sx, y + j * sy);
+            let tol = 1e-3 * sx;
+            for t in ties.chunks_exact(6).skip(1) {
+                if (ox + t[0] * sx - t[3]).abs() > tol || (oy - t[1] * sy - t[4]).abs() > tol {
+                    return Err(bad(format!(
+                        "{} tiepoints that do not lie on one grid (ground control points: warp the file first)",
+                        ties.len() / 6
+                    )));
+                }
+            }
+            (ox, oy, sx)
+        }
+        (_, _, Some(m)) => {
+            if m.len() != 16 {
+                return Err(bad(format!(
+                    "a ModelTransformation with {} values (need 16)",
+                    m.len()
+                )));
+            }
+            // Row-major 4x4: x = m0·I + m1·J + m3, y = m4·I + m5·J + m7.
+            let (a, b, c, d, e, f) = (m[0], m[1], m[3], m[4], m[5], m[7]);
+            if b != 0.0 || d != 0.0 {
+                return Err(bad(format!(
+                    "a rotated or sheared grid (ModelTransformation terms {b}, {d})"
+                )));
+            }
+            if !(a > 0.0 && e < 0.0) {
+                return Err(bad(format!(
+                    "a flipped grid (pixel size {a} x {e} m; need x > 0, y < 0)"
+                )));
+            }
+            check_square(a, -e).map_err(bad)?;
+            (c, f, a)
+        }
+        (None, None, None) => {
+            return Err(RasterError::MissingGeoreference {
+                path: path.to_path_buf(),
+            });
+        }
+        (Some(_), None, None) => {
+            return Err(bad("a ModelPixelScale without a ModelTiepoint".to_owned()));
+        }
+        (None, Some(t), None) => {
+            return Err(bad(format!(
+                "{} tiepoint(s) without a ModelPixelScale (ground control points: warp the file first)",
+                t.len() / 6
+            )));
+        }
+    };
+    if keys.raster_type == Some(RASTER_PIXEL_IS_POINT) {
+        // Raster point (0, 0) is the centre of pixel (0, 0); move to its north-west corner.
+        ox -= 0.5 * res;
+        oy += 0.5 * res;
+    }
+    let geo = GeoTransform::new(ox, oy, res);
+    check_geo(path, &geo)?;
+    Ok(geo)
+}
+
+fn check_square(sx: f64, sy: f64) -> Result<(), String> {
+    if (sx - sy).abs() > 1e-9 * sx.max(sy) {
+        return Err(format!(
+            "non-square pixels ({sx} x {sy} m); resample to square pixels first"
+        ));
+    }
+    Ok(())
+}
+
+fn read_nodata<R: Read + Seek>(
+    dec: &mut Decoder<R>,
+    path: &Path,
+) -> Result<Option<f64>, RasterError> {
+    let Some(value) = dec
+        .find_tag(Tag::GdalNodata)
+        .map_err(tiff_error(path, true))?
+    else {
+        return Ok(None);
+    };
+    let text = match value {
+        tiff::decoder::ifd::Value::Ascii(s) => s,
+        other => {
+            return Err(RasterError::BadNodata {
+                path: path.to_path_buf(),
+                found: format!("{other:?}"),
+            });
+        }
+    };
+    let trimmed = text.trim_matches(|c: char| c.is_whitespace() || c == '\0');
+    trimmed
+        .parse::<f64>()
+        .map(Some)
+        .map_err(|_| RasterError::BadNodata {
+            path: path.to_path_buf(),
+            found: text.clone(),
+        })
+}

@@ -1,0 +1,338 @@
+//! [`ZoneError`]: everything that can be wrong with a zones file, each with the file, the feature
+//! and the field to fix.
+
+use std::fmt;
+use std::path::PathBuf;
+
+/// Why a zones file was rejected.
+///
+/// Every variant names the file (`path`); those about one feature also carry its index in
+/// `features`, its name (`name`, or `zone-<index>` when it has none) and the offending `field` as a
+/// path inside the feature, e.g. `geometry.coordinates[0][5]`. The message is a single line:
+///
+/// ```text
+/// zones/x.geojson: features[2] ("dune west").geometry: ring 0 crosses itself at (120.5, 33.0); expected a simple polygon
+/// ```
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ZoneError {
+    /// The file could not be read.
+    #[error("{}: cannot read zones file: {source}", path.display())]
+    Io {
+        /// The zones file.
+        path: PathBuf,
+        /// What the operating system said.
+        #[source]
+        source: std::io::Error,
+    },
+
+    /// The file is not JSON (the message gives the line and column).
+    #[error("{}: invalid JSON: {source}", path.display())]
+    InvalidJson {
+        /// The zones file.
+        path: PathBuf,
+        /// The parser's complaint, with line and column.
+        #[source]
+        source: serde_json::Error,
+    },
+
+    /// The top level is not a GeoJSON FeatureCollection with a `features` array.
+    #[error(
+        "{}: {field}: expected a GeoJSON FeatureCollection with a \"features\" array, found {found}",
+        path.display()
+    )]
+    NotFeatureCollection {
+        /// The zones file.
+        path: PathBuf,
+        /// `type` or `features`.
+        field: String,
+        /// What was there instead, e.g. `"Feature"` or `no "type"`.
+        found: String,
+    },
+
+    /// More features than a [`ZoneHandle`](super::ZoneHandle) can index (2³²).
+    #[error("{}: features: {count} features; at most 4294967295 are supported", path.display())]
+    TooManyZones {
+        /// The zones file.
+        path: PathBuf,
+        /// How many features the file has.
+        count: usize,
+    },
+
+    /// A feature is not valid GeoJSON (e.g. not `"type": "Feature"`, or a position with fewer than
+    /// two numbers).
+    #[error("{}: features[{feature}] ({name:?}): invalid GeoJSON Feature: {source}", path.display())]
+    InvalidFeature {
+        /// The zones file.
+        path: PathBuf,
+        /// Index in `features`.
+        feature: usize,
+        /// The feature's name, or `zone-<index>`.
+        name: String,
+        /// The GeoJSON reader's complaint.
+        #[source]
+        source: serde_json::Error,
+    },
+
+    /// A feature's `properties.name` is present but not a string.
+    #[error("{}: features[{feature}].properties.name: expected a string, found {found}", path.display())]
+    InvalidName {
+        /// The zones file.
+        path: PathBuf,
+        /// Index in `features`.
+        feature: usize,
+        /// The JSON value found.
+        found: String,
+    },
+
+    /// A feature has `"geometry": null`.
+    #[error("{}: features[{feature}] ({name:?}).geometry: missing; expected a Polygon or MultiPolygon", path.display())]
+    MissingGeometry {
+        /// The zones file.
+        path: PathBuf,
+        /// Index in `features`.
+        feature: usize,
+        /// The feature's name, or `zone-<index>`.
+        name: String,
+    },
+
+    /// A feature's geometry is neither a Polygon nor a MultiPolygon.
+    #[error(
+        "{}: features[{feature}] ({name:?}).geometry.type: unsupported geometry {found:?}; expected \"Polygon\" or \"MultiPolygon\"",
+        path.display()
+    )]
+    UnsupportedGeometry {
+        /// The zones file.
+        path: PathBuf,
+        /// Index in `features`.
+        feature: usize,
+        /// The feature's name, or `zone-<index>`.
+        name: String,
+        /// The geometry type found, e.g. `LineString`.
+        found: String,
+    },
+
+    /// A feature has no `properties.kind`.
+    #[error(
+        "{}: features[{feature}] ({name:?}).properties.kind: missing; expected \"keep_in\" or \"keep_out\"",
+        path.display()
+    )]
+    MissingKind {
+        /// The zones file.
+        path: PathBuf,
+        /// Index in `features`.
+        feature: usize,
+        /// The feature's name, or `zone-<index>`.
+        name: String,
+    },
+
+    /// A feature's `properties.kind` is not one of the known kinds.
+    #[error(
+        "{}: features[{feature}] ({name:?}).properties.kind: unknown kind {found}; expected \"keep_in\" or \"keep_out\"",
+        path.display()
+    )]
+    UnknownKind {
+        /// The zones file.
+        path: PathBuf,
+        /// Index in `features`.
+        feature: usize,
+        /// The feature's name, or `zone-<index>`.
+        name: String,
+        /// The JSON value found, e.g. `"keep_near"`.
+        found: String,
+    },
+
+    /// A polygon has no rings (`"coordinates": []`).
+    #[error("{}: features[{feature}] ({name:?}).{field}: polygon has no rings", path.display())]
+    EmptyPolygon {
+        /// The zones file.
+        path: PathBuf,
+        /// Index in `features`.
+        feature: usize,
+        /// The feature's name, or `zone-<index>`.
+        name: String,
+        /// The polygon, e.g. `geometry.coordinates` or `geometry.coordinates[1]`.
+        field: String,
+    },
+
+    /// A coordinate is NaN or infinite (a `NaN` or `Infinity` literal, as some JSON writers emit).
+    #[error(
+        "{}: features[{feature}] ({name:?}).{field}: {axis} is {value}; expected a finite number of metres",
+        path.display()
+    )]
+    NonFiniteCoordinate {
+        /// The zones file.
+        path: PathBuf,
+        /// Index in `features`.
+        feature: usize,
+        /// The feature's name, or `zone-<index>`.
+        name: String,
+        /// The position, e.g. `geometry.coordinates[0][5]`.
+        field: String,
+        /// `x`, `y` or `z`.
+        axis: &'static str,
+        /// The literal found: `NaN`, `Infinity` or `-Infinity`.
+        value: String,
+    },
+
+    /// A position has fewer than two numbers.
+    #[error(
+        "{}: features[{feature}] ({name:?}).{field}: position has {len} number(s); expected [x, y] in metres",
+        path.display()
+    )]
+    PositionTooShort {
+        /// The zones file.
+        path: PathBuf,
+        /// Index in `features`.
+        feature: usize,
+        /// The feature's name, or `zone-<index>`.
+        name: String,
+        /// The position, e.g. `geometry.coordinates[0][5]`.
+        field: String,
+        /// How many numbers it has.
+        len: usize,
+    },
+
+    /// A ring has fewer than the 4 positions GeoJSON requires.
+    #[error(
+        "{}: features[{feature}] ({name:?}).{field}: ring has {positions} positions; expected at least 4 (first = last)",
+        path.display()
+    )]
+    RingTooShort {
+        /// The zones file.
+        path: PathBuf,
+        /// Index in `features`.
+        feature: usize,
+        /// The feature's name, or `zone-<index>`.
+        name: String,
+        /// The ring, e.g. `geometry.coordinates[0]`.
+        field: String,
+        /// How many positions it has.
+        positions: usize,
+    },
+
+    /// A ring does not end where it starts (GeoJSON rings are explicitly closed).
+    #[error(
+        "{}: features[{feature}] ({name:?}).{field}: ring is not closed: starts at {} but ends at {}; repeat the first position at the end",
+        path.display(), Xy(*first), Xy(*last)
+    )]
+    RingNotClosed {
+        /// The zones file.
+        path: PathBuf,
+        /// Index in `features`.
+        feature: usize,
+        /// The feature's name, or `zone-<index>`.
+        name: String,
+        /// The ring, e.g. `geometry.coordinates[0]`.
+        field: String,
+        /// Its first position.
+        first: [f64; 2],
+        /// Its last position.
+        last: [f64; 2],
+    },
+
+    /// A ring encloses no area: fewer than 3 distinct vertices, or all on one line.
+    #[error(
+        "{}: features[{feature}] ({name:?}).{field}: ring encloses zero area; expected at least 3 vertices not on one line",
+        path.display()
+    )]
+    ZeroAreaRing {
+        /// The zones file.
+        path: PathBuf,
+        /// Index in `features`.
+        feature: usize,
+        /// The feature's name, or `zone-<index>`.
+        name: String,
+        /// The ring, e.g. `geometry.coordinates[1]`.
+        field: String,
+    },
+
+    /// A ring crosses, touches or doubles back on itself (a bow-tie, a figure eight, a spike).
+    #[error(
+        "{}: features[{feature}] ({name:?}).{field}: ring {ring} crosses itself at {}; expected a simple polygon",
+        path.display(), Xy(*at)
+    )]
+    SelfIntersection {
+        /// The zones file.
+        path: PathBuf,
+        /// Index in `features`.
+        feature: usize,
+        /// The feature's name, or `zone-<index>`.
+        name: String,
+        /// The polygon, e.g. `geometry` or `geometry.coordinates[2]` in a MultiPolygon.
+        field: String,
+        /// The ring (0 = outer ring, 1… = holes).
+        ring: usize,
+        /// Where (map metres).
+        at: [f64; 2],
+    },
+
+    /// Two rings of a polygon cross or share part of an edge (e.g. a hole crossing its shell).
+    #[error(
+        "{}: features[{feature}] ({name:?}).{field}: ring {ring_a} crosses ring {ring_b} at {}; rings may only touch at single points",
+        path.display(), Xy(*at)
+    )]
+    RingsCross {
+        /// The zones file.
+        path: PathBuf,
+        /// Index in `features`.
+        feature: usize,
+        /// The feature's name, or `zone-<index>`.
+        name: String,
+        /// The polygon, e.g. `geometry`.
+        field: String,
+        /// The later ring.
+        ring_a: usize,
+        /// The earlier ring (0 = outer ring).
+        ring_b: usize,
+        /// Where (map metres).
+        at: [f64; 2],
+    },
+
+    /// A hole is not inside its polygon's outer ring.
+    #[error(
+        "{}: features[{feature}] ({name:?}).{field}: hole (ring {ring}) lies outside the outer ring; expected holes inside ring 0",
+        path.display()
+    )]
+    HoleOutsideShell {
+        /// The zones file.
+        path: PathBuf,
+        /// Index in `features`.
+        feature: usize,
+        /// The feature's name, or `zone-<index>`.
+        name: String,
+        /// The polygon, e.g. `geometry`.
+        field: String,
+        /// The hole's ring index.
+        ring: usize,
+    },
+
+    /// One hole of a polygon lies inside another.
+    #[error(
+        "{}: features[{feature}] ({name:?}).{field}: holes (rings {ring_a} and {ring_b}) overlap; expected disjoint holes",
+        path.display()
+    )]
+    HolesOverlap {
+        /// The zones file.
+        path: PathBuf,
+        /// Index in `features`.
+        feature: usize,
+        /// The feature's name, or `zone-<index>`.
+        name: String,
+        /// The polygon, e.g. `geometry`.
+        field: String,
+        /// One hole's ring index.
+        ring_a: usize,
+        /// The other's.
+        ring_b: usize,
+    },
+}
+
+/// Formats a point as `(x, y)` with the shortest round-tripping decimals.
+pub(super) struct Xy(pub [f64; 2]);
+
+impl fmt::Display for Xy {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "({:?}, {:?})", self.0[0], self.0[1])
+    }
+}

@@ -1,0 +1,643 @@
+//! A* on an 8-connected grid, with flat arrays and scratch reused across calls.
+//!
+//! [`AStar`] finds a cheapest path between two cells of a `width × height` row-major grid
+//! (`i = row * width + col`). The caller describes the terrain with a closure giving the cost
+//! multiplier of *entering* each cell, or `f32::INFINITY` for a blocked cell.
+//!
+//! # Move model
+//! - A move to one of the 4 orthogonal neighbours costs `1 × cell_cost(neighbour)`; a move to one
+//!   of the 4 diagonal neighbours costs `√2 × cell_cost(neighbour)`.
+//! - A diagonal move is allowed only if both orthogonal cells it passes between are passable
+//!   (no corner cutting), so a path never slips between two blocked cells touching at a corner.
+//! - The cost of the start cell is never charged; a path's cost is the sum of its move costs,
+//!   in cells (multiply by the resolution for metres).
+//!
+//! # Search
+//! Textbook A* (Hart, Nilsson & Raphael 1968) with the octile-distance heuristic
+//! `min_cost × (max(Δr, Δc) + (√2 − 1) · min(Δr, Δc))`. It is consistent when every passable
+//! cell costs at least `min_cost`, so each cell is expanded at most once and the returned path
+//! is optimal. The open set is a binary heap with lazy deletion (an improved cell is pushed
+//! again; stale entries are skipped when popped).
+//!
+//! Costs `g` are accumulated in `f64`: sums of millions of `f32` costs stay exact to far below
+//! the 1e-6 relative tolerance the tests demand, and equal-cost paths compare equal.
+//!
+//! **Determinism.** Heap entries are totally ordered: lower `f` first, then larger `g` (deeper
+//! nodes first, which also cuts expansions on plateaus), then lower cell index. The same input
+//! therefore always gives the same path, whatever the heap's internal layout.
+//!
+//! **No per-call reset.** Each cell's state carries a generation stamp; a cell whose stamp is
+//! not the current call's is "unseen", so a call costs time proportional to the cells it
+//! touches, not to the grid size.
+//!
+//! ## References
+//! - P. E. Hart, N. J. Nilsson and B. Raphael, "A Formal Basis for the Heuristic Determination
+//!   of Minimum Cost Paths", *IEEE Transactions on Systems Science and Cybernetics* 4(2) (1968)
+//!   100–107.
+
+/// √2 − 1, the extra octile cost of a diagonal step over an orthogonal one.
+const SQRT2_MINUS_1: f64 = std::f64::consts::SQRT_2 - 1.0;
+
+/// A path found by [`AStar::plan`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct GridPath {
+    /// Row-major cell indices from the start to the goal, both included.
+    pub cells: Vec<usize>,
+    /// Total move cost.
+    ///
+    /// # Units
+    /// Cells (step length in cell widths × cost multiplier), summed in `f64`.
+    pub cost: f64,
+}
+
+/// Per-cell search state, kept together so one cache line serves a relaxation.
+#[derive(Debug, Clone, Copy, Default)]
+struct CellState {
+    /// Best known cost from the start (valid only when the stamp is current).
+    g: f64,
+    /// Predecessor on the best known path.
+    parent: u32,
+    /// `2·generation` = open (seen) in the current call, `2·generation + 1` = closed; any other
+    /// value = not seen in the current call.
+    stamp: u32,
+}
+
+/// One open-set entry: 12 bytes, so a node's 4 children share one cache line.
+#[derive(Debug, Clone, Copy)]
+#[repr(C, packed(4))]
+struct Open {
+    /// IEEE-754 bits of `f = g + h`; `f ≥ 0`, so the bits order like the value.
+    f_bits: u64,
+    cell: u32,
+}
+
+/// The open set: a 4-ary min-heap ordered by `f`, then by smaller `h` (i.e. larger `g` for the
+/// same `f`), then by lower cell index.
+///
+/// The order is total on distinct cells, so the pop sequence is a function of the input alone.
+/// Ties in `f` are rare with real-valued costs, so a comparison is almost always one integer
+/// comparison; the tie rule recomputes `h` from the cell's position.
+#[derive(Debug, Clone, Default)]
+struct OpenSet {
+    entries: Vec<Open>,
+    width: usize,
+    goal_row: usize,
+    goal_col: usize,
+}
+
+impl OpenSet {
+    /// Empties the set for a search towards `goal`.
+    fn reset(&mut self, width: usize, goal: usize) {
+        self.entries.clear();
+        self.width = width;
+        self.goal_row = goal / width;
+        self.goal_col = goal % width;
+    }
+
+    /// Whether `a` pops before `b`.
+    #[inline(always)]
+    fn before(&self, a: Open, b: Open) -> bool {
+        let (fa, fb) = (a.f_bits, b.f_bits);
+        if fa != fb {
+            return fa < fb;
+        }
+        let (ca, cb) = (a.cell, b.cell);
+        let (ha, hb) = (self.octile(ca), self.octile(cb));
+        if ha != hb { ha < hb } else { ca < cb }
+    }
+
+    /// Unscaled octile distance from `cell` to the goal (the tie-breaker).
+    #[inline(always)]
+    fn octile(&self, cell: u32) -> f64 {
+        let cell = cell as usize;
+        let dr = (cell / self.width).abs_diff(self.goal_row) as f64;
+        let dc = (cell % self.width).abs_diff(self.goal_col) as f64;
+        dr.max(dc) + SQRT2_MINUS_1 * dr.min(dc)
+    }
+
+    #[inline(always)]
+    fn push(&mut self, item: Open) {
+        let mut i = self.entries.len();
+        self.entries.push(item);
+        while i > 0 {
+            let parent = (i - 1) / 4;
+            let p = self.entries[parent];
+            if !self.before(item, p) {
+                break;
+            }
+            self.entries[i] = p;
+            i = parent;
+        }
+        self.entries[i] = item;
+    }
+
+    #[inline(always)]
+    fn pop(&mut self) -> Option<Open> {
+        let last = self.entries.pop()?;
+        let Some(&top) = self.entries.first() else {
+            return Some(last);
+        };
+        let n = self.entries.len();
+        let mut i = 0;
+        loop {
+            let first = 4 * i + 1;
+            if first >= n {
+                break;
+            }
+            // Smallest child; the common full-node case is unrolled.
+            let (m, mk) = if let Some(k) = self.entries.get(first..first + 4) {
+                let (m01, k01) = if self.before(k[1], k[0]) { (1, k[1]) } else { (0, k[0]) };
+                let (m23, k23) = if self.before(k[3], k[2]) { (3, k[3]) } else { (2, k[2]) };
+                if self.before(k23, k01) { (first + m23, k23) } else { (first + m01, k01) }
+            } else {
+                let mut m = first;
+                let mut mk = self.entries[first];
+                for c in first + 1..n {
+                    let ck = self.entries[c];
+                    if self.before(ck, mk) {
+                        m = c;
+                        mk = ck;
+                    }
+                }
+                (m, mk)
+            };
+            if !self.before(mk, last) {
+                break;
+            }
+            self.entries[i] = mk;
+            i = m;
+        }
+        self.entries[i] = last;
+        Some(top)
+    }
+}
+
+/// A* planner for one grid size, owning the scratch memory reused by every [`AStar::plan`].
+///
+/// Memory: 16 bytes per cell plus the open set.
+#[derive(Debug, Clone)]
+pub struct AStar {
+    width: usize,
+    height: usize,
+    cells: Vec<CellState>,
+    heap: OpenSet,
+    generation: u32,
+    expansions: usize,
+}
+
+impl AStar {
+    /// A planner for `width × height` grids.
+    ///
+    /// # Panics
+    /// If `width * height` overflows or exceeds `u32::MAX` cells.
+    #[must_use]
+    pub fn new(width: usize, height: usize) -> Self {
+        let n = width
+            .checked_mul(height)
+            .filter(|&n| n <= u32::MAX as usize)
+            .unwrap_or_else(|| panic!("grid {width}×{height} exceeds u32::MAX cells"));
+        Self {
+            width,
+            height,
+            cells: vec![CellState::default(); n],
+            heap: OpenSet::default(),
+            generation: 0,
+            expansions: 0,
+        }
+    }
+
+    /// Grid width in cells.
+    #[must_use]
+    pub fn width(&self) -> usize {
+        self.width
+    }
+
+    /// Grid height in cells.
+    #[must_use]
+    pub fn height(&self) -> usize {
+        self.height
+    }
+
+    /// Nodes expanded by the last call of [`AStar::plan`]: the cells taken from the open set and
+    /// closed, the start and the goal included (0 when the call returned before searching).
+    #[must_use]
+    pub fn expansions(&self) -> usize {
+        self.expansions
+    }
+
+    /// Cheapest path from `start` to `goal` (row-major indices), or `None` if there is none.
+    ///
+    /// `cell_cost(i)` is the cost multiplier (normally ≥ 1.0) of entering cell `i`, or
+    /// `f32::INFINITY` (or NaN) if the cell is blocked; it is only called on cells inside the
+    /// grid. `min_cost` scales the octile heuristic and must not exceed any passable cell's cost
+    /// for the result to be optimal (normally 1.0); a value ≤ 0 or NaN turns the search into
+    /// Dijkstra's. A blocked start or goal gives `None`; `start == goal` gives the one-cell
+    /// path of cost 0.
+    ///
+    /// # Panics
+    /// If `start` or `goal` is outside the grid.
+    pub fn plan<F: Fn(usize) -> f32>(
+        &mut self,
+        start: usize,
+        goal: usize,
+        min_cost: f32,
+        cell_cost: F,
+    ) -> Option<GridPath> {
+        let n = self.cells.len();
+        assert!(
+            start < n && goal < n,
+            "start {start} or goal {goal} outside the {}×{} grid",
+            self.width,
+            self.height
+        );
+        self.expansions = 0;
+        let passable = |c: f32| c < f32::INFINITY;
+        if !passable(cell_cost(start)) || !passable(cell_cost(goal)) {
+            return None;
+        }
+        if start == goal {
+            return Some(GridPath { cells: vec![start], cost: 0.0 });
+        }
+        let open_stamp = self.next_generation();
+        let width = self.width;
+        let height = self.height;
+        let mut search = Search {
+            cells: &mut self.cells,
+            heap: &mut self.heap,
+            open_stamp,
+            closed_stamp: open_stamp + 1,
+            width,
+            goal_row: goal / width,
+            goal_col: goal % width,
+            h_scale: if min_cost > 0.0 { f64::from(min_cost) } else { 0.0 },
+        };
+        search.heap.reset(width, goal);
+        search.cells[start] = CellState { g: 0.0, parent: start as u32, stamp: open_stamp };
+        let f_start = search.heuristic(start / width, start % width);
+        search.heap.push(Open { f_bits: f_start.to_bits(), cell: start as u32 });
+
+        let sqrt2 = std::f64::consts::SQRT_2;
+        let mut expansions = 0_usize;
+        let mut found = false;
+        while let Some(Open { cell, .. }) = search.heap.pop() {
+            let cur = cell as usize;
+            // Lazy deletion: with a consistent heuristic the first pop of a cell carries its
+            // best g, so any later pop of the same cell is stale.
+            let state = &mut search.cells[cur];
+            if state.stamp == search.closed_stamp {
+                continue;
+            }
+            state.stamp = search.closed_stamp;
+            let g = state.g;
+            expansions += 1;
+            if cur == goal {
+                found = true;
+                break;
+            }
+            let (row, col) = (cur / width, cur % width);
+            // A closed cell was entered, so it is passable: its cost is not needed, and it
+            // needs no relaxation. About half the neighbours are closed.
+            let mut orthogonal = |inside: bool, r: usize, c: usize| -> bool {
+                if !inside {
+                    return false;
+                }
+                if search.is_closed(r, c) {
+                    return true;
+                }
+                let cost = f64::from(cell_cost(r * width + c));
+                // `x < ∞` is false for ∞ and NaN alike: both are blocked.
+                let open = cost < f64::INFINITY;
+                if open {
+                    search.relax_unclosed(cell, g, r, c, cost);
+                }
+                open
+            };
+            let pu = orthogonal(row > 0, row.wrapping_sub(1), col);
+            let pd = orthogonal(row + 1 < height, row + 1, col);
+            let pl = orthogonal(col > 0, row, col.wrapping_sub(1));
+            let pr = orthogonal(col + 1 < width, row, col + 1);
+            // Out-of-grid diagonals are excluded by their orthogonal flags, so the wrapping
+            // subtractions are never used.
+            for (ok, r, c) in [
+                (pu && pl, row.wrapping_sub(1), col.wrapping_sub(1)),
+                (pu && pr, row.wrapping_sub(1), col + 1),
+                (pd && pl, row + 1, col.wrapping_sub(1)),
+                (pd && pr, row + 1, col + 1),
+            ] {
+                if ok && !search.is_closed(r, c) {
+                    let cost = f64::from(cell_cost(r * width + c));
+                    if cost < f64::INFINITY {
+                        search.relax_unclosed(cell, g, r, c, sqrt2 * cost);
+                    }
+                }
+            }
+        }
+        self.expansions = expansions;
+        if !found {
+            return None;
+        }
+        let cost = self.cells[goal].g;
+        let mut path = vec![goal];
+        let mut cur = goal;
+        while cur != start {
+            cur = self.cells[cur].parent as usize;
+            path.push(cur);
+        }
+        path.reverse();
+        Some(GridPath { cells: path, cost })
+    }
+
+    /// Advances the generation and returns its "open" stamp, resetting the stamps when they
+    /// would wrap (once every 2³¹ calls).
+    fn next_generation(&mut self) -> u32 {
+        if self.generation >= u32::MAX / 2 - 1 {
+            for c in &mut self.cells {
+                c.stamp = 0;
+            }
+            self.generation = 0;
+        }
+        self.generation += 1;
+        2 * self.generation
+    }
+}
+
+/// The borrowed state of one [`AStar::plan`] call.
+struct Search<'a> {
+    cells: &'a mut [CellState],
+    heap: &'a mut OpenSet,
+    open_stamp: u32,
+    closed_stamp: u32,
+    width: usize,
+    goal_row: usize,
+    goal_col: usize,
+    h_scale: f64,
+}
+
+impl Search<'_> {
+    /// Octile distance to the goal × `min_cost`.
+    #[inline(always)]
+    fn heuristic(&self, row: usize, col: usize) -> f64 {
+        let dr = row.abs_diff(self.goal_row) as f64;
+        let dc = col.abs_diff(self.goal_col) as f64;
+        self.h_scale * (dr.max(dc) + SQRT2_MINUS_1 * dr.min(dc))
+    }
+
+    #[inline(always)]
+    fn is_closed(&self, row: usize, col: usize) -> bool {
+        self.cells[row * self.width + col].stamp == self.closed_stamp
+    }
+
+    /// Relaxes the move from `cur` (best cost `g`) into the unclosed cell (`row`, `col`)
+    /// costing `step`.
+    #[inline(always)]
+    fn relax_unclosed(&mut self, cur: u32, g: f64, row: usize, col: usize, step: f64) {
+        let nb = row * self.width + col;
+        let state = &mut self.cells[nb];
+        let ng = g + step;
+        if state.stamp != self.open_stamp || ng < state.g {
+            *state = CellState { g: ng, parent: cur, stamp: self.open_stamp };
+            let f = ng + self.heuristic(row, col);
+            self.heap.push(Open { f_bits: f.to_bits(), cell: nb as u32 });
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{RngExt, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+    use std::cmp::{Ordering, Reverse};
+    use std::collections::BinaryHeap;
+
+    /// Plain Dijkstra over the same move model, returning the optimal cost.
+    fn dijkstra(width: usize, height: usize, cost: &[f32], start: usize, goal: usize) -> Option<f64> {
+        #[derive(PartialEq)]
+        struct Key(f64);
+        impl Eq for Key {}
+        impl PartialOrd for Key {
+            fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+                Some(self.cmp(o))
+            }
+        }
+        impl Ord for Key {
+            fn cmp(&self, o: &Self) -> Ordering {
+                self.0.total_cmp(&o.0)
+            }
+        }
+        let ok = |r: i64, c: i64| {
+            r >= 0
+                && c >= 0
+                && r < height as i64
+                && c < width as i64
+                && cost[r as usize * width + c as usize].is_finite()
+        };
+        if !cost[start].is_finite() || !cost[goal].is_finite() {
+            return None;
+        }
+        let mut dist = vec![f64::INFINITY; width * height];
+        let mut heap = BinaryHeap::new();
+        dist[start] = 0.0;
+        heap.push(Reverse((Key(0.0), start)));
+        while let Some(Reverse((Key(d), u))) = heap.pop() {
+            if d > dist[u] {
+                continue;
+            }
+            if u == goal {
+                return Some(d);
+            }
+            let (r, c) = ((u / width) as i64, (u % width) as i64);
+            for dr in -1..=1_i64 {
+                for dc in -1..=1_i64 {
+                    if (dr, dc) == (0, 0) || !ok(r + dr, c + dc) {
+                        continue;
+                    }
+                    if dr != 0 && dc != 0 && !(ok(r + dr, c) && ok(r, c + dc)) {
+                        continue;
+                    }
+                    let v = (r + dr) as usize * width + (c + dc) as usize;
+                    let step = if dr != 0 && dc != 0 { std::f64::consts::SQRT_2 } else { 1.0 };
+                    let nd = d + step * f64::from(cost[v]);
+                    if nd < dist[v] {
+                        dist[v] = nd;
+                        heap.push(Reverse((Key(nd), v)));
+                    }
+                }
+            }
+        }
+        None
+    }
+
+    fn random_grid(rng: &mut ChaCha8Rng, width: usize, height: usize, blocked: f64) -> Vec<f32> {
+        (0..width * height)
+            .map(|_| {
+                if rng.random_bool(blocked) {
+                    f32::INFINITY
+                } else {
+                    rng.random_range(1.0..2.0)
+                }
+            })
+            .collect()
+    }
+
+    /// The path is connected, legal (no corner cutting, passable) and its cost is `cost`.
+    fn check_path(width: usize, cost: &[f32], path: &GridPath, start: usize, goal: usize) {
+        assert_eq!(path.cells.first(), Some(&start));
+        assert_eq!(path.cells.last(), Some(&goal));
+        let mut total = 0.0;
+        for pair in path.cells.windows(2) {
+            let (a, b) = (pair[0], pair[1]);
+            let (ra, ca) = (a / width, a % width);
+            let (rb, cb) = (b / width, b % width);
+            let (dr, dc) = (ra.abs_diff(rb), ca.abs_diff(cb));
+            assert!(dr <= 1 && dc <= 1 && dr + dc > 0, "not adjacent: {a} → {b}");
+            assert!(cost[b].is_finite(), "blocked cell {b} on the path");
+            if dr == 1 && dc == 1 {
+                assert!(cost[ra * width + cb].is_finite() && cost[rb * width + ca].is_finite());
+                total += std::f64::consts::SQRT_2 * f64::from(cost[b]);
+            } else {
+                total += f64::from(cost[b]);
+            }
+        }
+        assert!((total - path.cost).abs() <= 1e-9 * total.max(1.0));
+    }
+
+    #[test]
+    fn matches_dijkstra_on_random_grids() {
+        let mut rng = ChaCha8Rng::seed_from_u64(42);
+        let mut found = 0;
+        for trial in 0..400 {
+            let width = rng.random_range(1..=30);
+            let height = rng.random_range(1..=30);
+            let blocked = rng.random_range(0.0..0.3);
+            let cost = random_grid(&mut rng, width, height, blocked);
+            let mut astar = AStar::new(width, height);
+            // Several queries on one planner also exercise the generation stamps.
+            for _ in 0..5 {
+                let start = rng.random_range(0..width * height);
+                let goal = rng.random_range(0..width * height);
+                let got = astar.plan(start, goal, 1.0, |i| cost[i]);
+                let want = dijkstra(width, height, &cost, start, goal);
+                match (&got, want) {
+                    (Some(p), Some(w)) => {
+                        assert!(
+                            (p.cost - w).abs() <= 1e-6 * w.max(1.0),
+                            "trial {trial}: A* {} vs Dijkstra {w}",
+                            p.cost
+                        );
+                        check_path(width, &cost, p, start, goal);
+                        found += 1;
+                    }
+                    (None, None) => {}
+                    _ => panic!("trial {trial}: A* {got:?} vs Dijkstra {want:?}"),
+                }
+            }
+        }
+        assert!(found > 1000, "too few solvable cases: {found}");
+    }
+
+    #[test]
+    fn zero_min_cost_is_dijkstra_and_agrees() {
+        let mut rng = ChaCha8Rng::seed_from_u64(9);
+        let cost = random_grid(&mut rng, 25, 25, 0.15);
+        let mut astar = AStar::new(25, 25);
+        let a = astar.plan(0, 624, 1.0, |i| cost[i]).map(|p| p.cost);
+        let a_expanded = astar.expansions();
+        let d = astar.plan(0, 624, 0.0, |i| cost[i]).map(|p| p.cost);
+        assert!(astar.expansions() >= a_expanded);
+        match (a, d) {
+            (Some(a), Some(d)) => assert!((a - d).abs() <= 1e-9 * d),
+            (a, d) => assert_eq!(a, d),
+        }
+    }
+
+    #[test]
+    fn same_input_same_path() {
+        let mut rng = ChaCha8Rng::seed_from_u64(1);
+        // Few distinct costs: many equal-cost paths, so tie-breaking decides.
+        let cost: Vec<f32> =
+            (0..40 * 40).map(|_| if rng.random_bool(0.1) { f32::INFINITY } else { 1.0 }).collect();
+        let first = AStar::new(40, 40).plan(41, 1558, 1.0, |i| cost[i]);
+        let mut reused = AStar::new(40, 40);
+        for _ in 0..3 {
+            let _ = reused.plan(1558, 41, 1.0, |i| cost[i]);
+            assert_eq!(reused.plan(41, 1558, 1.0, |i| cost[i]), first);
+        }
+    }
+
+    #[test]
+    fn walled_off_goal_has_no_path() {
+        // Column 3 fully blocked splits a 7×5 grid.
+        let (w, h) = (7, 5);
+        let cost: Vec<f32> =
+            (0..w * h).map(|i| if i % w == 3 { f32::INFINITY } else { 1.0 }).collect();
+        let mut astar = AStar::new(w, h);
+        assert_eq!(astar.plan(0, w * h - 1, 1.0, |i| cost[i]), None);
+        assert!(astar.expansions() > 0);
+    }
+
+    #[test]
+    fn no_corner_cutting() {
+        // 2×2 with the anti-diagonal blocked: the diagonal move (0,0)→(1,1) is forbidden.
+        let cost = [1.0, f32::INFINITY, f32::INFINITY, 1.0];
+        assert_eq!(AStar::new(2, 2).plan(0, 3, 1.0, |i| cost[i]), None);
+        // With one side open the path goes around it: 2 orthogonal moves, not 1 diagonal.
+        let cost = [1.0, 1.0, f32::INFINITY, 1.0];
+        let path = AStar::new(2, 2).plan(0, 3, 1.0, |i| cost[i]).expect("path");
+        assert_eq!(path.cells, vec![0, 1, 3]);
+        assert_eq!(path.cost, 2.0);
+    }
+
+    #[test]
+    fn diagonal_costs_sqrt2() {
+        let path = AStar::new(3, 3).plan(0, 8, 1.0, |_| 1.0).expect("path");
+        assert_eq!(path.cells, vec![0, 4, 8]);
+        assert_eq!(path.cost, 2.0 * std::f64::consts::SQRT_2);
+    }
+
+    #[test]
+    fn start_equals_goal_and_one_cell_grid() {
+        let mut astar = AStar::new(1, 1);
+        let path = astar.plan(0, 0, 1.0, |_| 1.0).expect("path");
+        assert_eq!(path, GridPath { cells: vec![0], cost: 0.0 });
+        assert_eq!(astar.plan(0, 0, 1.0, |_| f32::INFINITY), None);
+        let mut astar = AStar::new(4, 3);
+        assert_eq!(astar.plan(5, 5, 1.0, |_| 1.5).map(|p| p.cells), Some(vec![5]));
+    }
+
+    #[test]
+    fn blocked_start_or_goal_has_no_path() {
+        let mut astar = AStar::new(5, 5);
+        assert_eq!(astar.plan(0, 24, 1.0, |i| if i == 0 { f32::INFINITY } else { 1.0 }), None);
+        assert_eq!(astar.plan(0, 24, 1.0, |i| if i == 24 { f32::NAN } else { 1.0 }), None);
+        assert_eq!(astar.expansions(), 0);
+    }
+
+    #[test]
+    fn single_row_and_column() {
+        let mut astar = AStar::new(6, 1);
+        let path = astar.plan(5, 0, 1.0, |_| 2.0).expect("path");
+        assert_eq!(path.cells, vec![5, 4, 3, 2, 1, 0]);
+        assert_eq!(path.cost, 10.0);
+        let mut astar = AStar::new(1, 6);
+        assert_eq!(astar.plan(0, 5, 1.0, |i| if i == 3 { f32::INFINITY } else { 1.0 }), None);
+    }
+
+    #[test]
+    fn generation_wrap_resets_stamps() {
+        let cost = [1.0_f32; 16];
+        let mut astar = AStar::new(4, 4);
+        let expected = astar.plan(0, 15, 1.0, |i| cost[i]);
+        astar.generation = u32::MAX / 2 - 2;
+        for _ in 0..4 {
+            assert_eq!(astar.plan(0, 15, 1.0, |i| cost[i]), expected);
+        }
+        assert!(astar.generation < 10);
+    }
+
+    #[test]
+    #[should_panic(expected = "outside")]
+    fn start_outside_panics() {
+        let _ = AStar::new(3, 3).plan(9, 0, 1.0, |_| 1.0);
+    }
+}

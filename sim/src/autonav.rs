@@ -1,0 +1,382 @@
+//! One sol's drive: AutoNav follows the route's waypoints in steps of a few metres.
+//!
+//! Before every step the rover checks that the rest of its current path is still open at the
+//! current uncertainty `r` (zones only grow as `r` grows, so an open path stays open until `r`
+//! passes the smallest clearance on it); when it is not, or when a new waypoint becomes the
+//! target, it re-plans with A* on the [`PlanningGrid`]. No path → `NO_PATH` fault. The rover
+//! itself standing in a grown keep-out (or outside the shrunk keep-in) → `KEEP_OUT` / `KEEP_IN`.
+//!
+//! Each step, Visual Odometry succeeds with a probability set by the terrain class under the
+//! wheels (or, in a replay, the historic fraction of distance without VO is charged); the true
+//! motion slips and turns by a small heading error; the estimate follows the VO measurement
+//! (small noise) or, without VO, the commanded motion (blind to slip). The odometry distance feeds
+//! the uncertainty model.
+
+use nalgebra::{Rotation2, Vector2};
+use rand::RngExt;
+use rand_chacha::ChaCha8Rng;
+use rand_distr::StandardNormal;
+
+use crate::astar::AStar;
+use crate::outcome::{Fault, FaultKind};
+use crate::planning_grid::PlanningGrid;
+use crate::pose::{EstimatedPose, TruePose};
+use crate::uncertainty::{UncertaintyModel, UncertaintyState};
+use maps::TerrainClass;
+
+/// A value per terrain class.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct PerTerrain {
+    /// Value on sand.
+    pub sand: f64,
+    /// Value on soil.
+    pub soil: f64,
+    /// Value on bedrock.
+    pub bedrock: f64,
+}
+
+impl PerTerrain {
+    /// The value for `class`.
+    #[must_use]
+    pub fn get(&self, class: TerrainClass) -> f64 {
+        match class {
+            TerrainClass::Sand => self.sand,
+            TerrainClass::Soil => self.soil,
+            TerrainClass::Bedrock => self.bedrock,
+        }
+    }
+}
+
+/// Rover and AutoNav settings (plain struct; every field has a unit and a default).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct RoverParams {
+    /// AutoNav drive rate, metres per hour of driving (default: 100).
+    pub drive_rate_m_per_h: f64,
+    /// Length of one AutoNav step, metres (default: 2.0).
+    pub step_m: f64,
+    /// A waypoint counts as reached within this distance, metres (default: 2.0).
+    pub waypoint_tolerance_m: f64,
+    /// Probability that VO converges on a step, per terrain class
+    /// (default: sand 0.80, soil 0.97, bedrock 0.995).
+    pub vo_success: PerTerrain,
+    /// Mean slip fraction of commanded motion, per terrain class
+    /// (default: sand 0.12, soil 0.04, bedrock 0.02).
+    pub slip_fraction: PerTerrain,
+    /// Path-cost multiplier of entering a cell, per terrain class, ≥ 1
+    /// (default: sand 1.3, soil 1.0, bedrock 1.0).
+    pub terrain_cost: PerTerrain,
+    /// VO measurement noise, as a fraction of step length, 1σ per axis (default: 0.01).
+    pub vo_noise_fraction: f64,
+    /// Attitude (heading) error, constant over a sol, 1σ degrees (default: 0.3).
+    pub heading_sigma_deg: f64,
+    /// AutoNav keeps this far from closed cells when it has room, metres (default: 5.0).
+    /// Shapes the path only; a passage is open as long as any cell of it is open.
+    pub edge_buffer_m: f64,
+}
+
+impl Default for RoverParams {
+    fn default() -> Self {
+        Self {
+            drive_rate_m_per_h: 100.0,
+            step_m: 2.0,
+            waypoint_tolerance_m: 2.0,
+            vo_success: PerTerrain { sand: 0.80, soil: 0.97, bedrock: 0.995 },
+            slip_fraction: PerTerrain { sand: 0.12, soil: 0.04, bedrock: 0.02 },
+            terrain_cost: PerTerrain { sand: 1.3, soil: 1.0, bedrock: 1.0 },
+            vo_noise_fraction: 0.01,
+            heading_sigma_deg: 0.3,
+            edge_buffer_m: 5.0,
+        }
+    }
+}
+
+/// Where VO success comes from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum VoSource {
+    /// Drawn per step from the terrain class under the wheels.
+    Terrain,
+    /// Replay: this fraction of the distance is charged as driven without VO.
+    Historic {
+        /// Fraction 0..=1 of distance without VO.
+        novo_fraction: f64,
+    },
+}
+
+/// What ends a sol's drive besides faults and the end of the route.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DriveLimits {
+    /// Odometry distance budget, metres (replays: the historic distance).
+    pub max_distance_m: Option<f64>,
+    /// Driving time budget, seconds (what-if runs: the drive window).
+    pub max_time_s: Option<f64>,
+}
+
+/// The rover as the simulator tracks it across sols.
+#[derive(Clone, Debug)]
+pub struct RoverState {
+    /// Ground truth.
+    pub truth: TruePose,
+    /// The rover's belief.
+    pub estimate: EstimatedPose,
+    /// Odometers and margin.
+    pub uncertainty: UncertaintyState,
+    /// Index in the route of the waypoint being driven to.
+    pub next_waypoint: usize,
+    path: Option<FollowedPath>,
+}
+
+impl RoverState {
+    /// A rover at `start` (truth and estimate agree) heading for route waypoint 1.
+    #[must_use]
+    pub fn new(start: [f64; 2], initial_margin_m: f64) -> Self {
+        let p = Vector2::new(start[0], start[1]);
+        Self {
+            truth: TruePose { position_m: p },
+            estimate: EstimatedPose { position_m: p },
+            uncertainty: UncertaintyState { margin_m: initial_margin_m, ..Default::default() },
+            next_waypoint: 1,
+            path: None,
+        }
+    }
+
+    /// Forget the current path (after the estimate jumps, e.g. a localization).
+    pub fn clear_path(&mut self) {
+        self.path = None;
+    }
+}
+
+/// What one sol's drive did.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct DriveResult {
+    /// Odometry distance, metres.
+    pub distance_m: f64,
+    /// Of which with VO, metres.
+    pub d_vo_m: f64,
+    /// Of which without VO, metres.
+    pub d_novo_m: f64,
+    /// Driving time, seconds.
+    pub drive_time_s: f64,
+    /// The fault that ended the drive, if any.
+    pub fault: Option<Fault>,
+    /// Whether the last waypoint was reached.
+    pub reached_goal: bool,
+    /// A* runs.
+    pub plans: u32,
+    /// Estimated positions, one per step (the start included).
+    pub path_m: Vec<[f64; 2]>,
+}
+
+/// A planned path being followed.
+#[derive(Clone, Debug)]
+struct FollowedPath {
+    waypoint: usize,
+    points: Vec<Vector2<f64>>,
+    cum_len_m: Vec<f64>,
+    cells: Vec<usize>,
+    /// `suffix_min[i]` = smallest clearance of cells `i..`.
+    suffix_min: Vec<f32>,
+    progress_m: f64,
+}
+
+impl FollowedPath {
+    fn point_at(&self, s: f64) -> Vector2<f64> {
+        let last = self.points.len() - 1;
+        if s >= self.cum_len_m[last] {
+            return self.points[last];
+        }
+        let i = self.cum_len_m.partition_point(|&c| c <= s).max(1);
+        let (a, b) = (self.points[i - 1], self.points[i]);
+        let seg = self.cum_len_m[i] - self.cum_len_m[i - 1];
+        let t = if seg > 0.0 { (s - self.cum_len_m[i - 1]) / seg } else { 0.0 };
+        a + (b - a) * t
+    }
+
+    fn open_ahead(&self, r_m: f64) -> bool {
+        let i = self.cum_len_m.partition_point(|&c| c < self.progress_m).min(self.cells.len() - 1);
+        f64::from(self.suffix_min[i]) > r_m
+    }
+}
+
+/// The static inputs of a drive.
+pub struct DriveContext<'a> {
+    /// Planning grid.
+    pub grid: &'a PlanningGrid,
+    /// Route waypoints, map metres; waypoint 0 is the start.
+    pub route: &'a [[f64; 2]],
+    /// Rover settings.
+    pub rover: &'a RoverParams,
+    /// Uncertainty growth.
+    pub model: &'a UncertaintyModel,
+}
+
+/// Drive one sol. Advances `state` and returns what happened.
+pub fn drive_sol(
+    ctx: &DriveContext<'_>,
+    state: &mut RoverState,
+    limits: DriveLimits,
+    vo: VoSource,
+    rng: &mut ChaCha8Rng,
+    astar: &mut AStar,
+) -> DriveResult {
+    let rover = ctx.rover;
+    let grid = ctx.grid;
+    let mut out = DriveResult { path_m: vec![to_array(state.estimate.position_m)], ..Default::default() };
+    let heading_err = Rotation2::new(rover.heading_sigma_deg.to_radians() * rng.sample::<f64, _>(StandardNormal));
+    let rate_m_per_s = rover.drive_rate_m_per_h / 3600.0;
+    loop {
+        if state.next_waypoint >= ctx.route.len() {
+            out.reached_goal = true;
+            break;
+        }
+        let distance_left = limits.max_distance_m.map_or(f64::INFINITY, |m| m - out.distance_m);
+        let time_left = limits.max_time_s.map_or(f64::INFINITY, |t| t - out.drive_time_s);
+        if distance_left <= 1e-9 || time_left <= 1e-9 {
+            break;
+        }
+        let r = state.uncertainty.radius_m(ctx.model);
+        let est = state.estimate.position_m;
+        // Waypoint reached?
+        let wp = ctx.route[state.next_waypoint];
+        if (est - Vector2::new(wp[0], wp[1])).norm() <= rover.waypoint_tolerance_m {
+            state.next_waypoint += 1;
+            state.path = None;
+            continue;
+        }
+        // The rover's own cell must be open.
+        let fault_at = |kind| Fault { kind, after_m: out.distance_m, uncertainty_m: r, position_m: to_array(est) };
+        let Some(here) = grid.cell_of(to_array(est)) else {
+            out.fault = Some(fault_at(FaultKind::KeepIn));
+            break;
+        };
+        if f64::from(grid.keep_out_clearance_m[here]) <= r {
+            out.fault = Some(fault_at(FaultKind::KeepOut));
+            break;
+        }
+        if f64::from(grid.keep_in_clearance_m[here]) <= r {
+            out.fault = Some(fault_at(FaultKind::KeepIn));
+            break;
+        }
+        let needs_plan = match &state.path {
+            None => true,
+            Some(p) => p.waypoint != state.next_waypoint || !p.open_ahead(r),
+        };
+        if needs_plan {
+            out.plans += 1;
+            match plan_path(ctx, astar, here, state.next_waypoint, est, r) {
+                Some(p) => state.path = Some(p),
+                None => {
+                    state.path = None;
+                    out.fault = Some(fault_at(FaultKind::NoPath));
+                    break;
+                }
+            }
+        }
+        let Some(path) = state.path.as_mut() else { break };
+        // Command a step toward the carrot one step ahead on the path.
+        let carrot = path.point_at(path.progress_m + rover.step_m);
+        let mut cmd = carrot - est;
+        let mut cmd_len = cmd.norm();
+        if cmd_len < 1e-6 {
+            // At the end of the path but outside the waypoint tolerance: aim at the waypoint.
+            cmd = Vector2::new(wp[0], wp[1]) - est;
+            cmd_len = cmd.norm();
+            if cmd_len > rover.step_m {
+                cmd *= rover.step_m / cmd_len;
+                cmd_len = rover.step_m;
+            }
+        }
+        if cmd_len * 1.0 / rate_m_per_s > time_left {
+            cmd *= time_left * rate_m_per_s / cmd_len;
+            cmd_len = time_left * rate_m_per_s;
+        }
+        // The world: terrain under the true wheels, VO, slip.
+        let class = grid
+            .cell_of(to_array(state.truth.position_m))
+            .map_or(TerrainClass::Soil, |c| grid.terrain_class(c));
+        let draw: f64 = rng.random();
+        let (vo_ok, novo_fraction) = match vo {
+            VoSource::Terrain => {
+                let ok = draw < rover.vo_success.get(class);
+                (ok, if ok { 0.0 } else { 1.0 })
+            }
+            VoSource::Historic { novo_fraction } => (draw >= novo_fraction, novo_fraction),
+        };
+        let slip_noise: f64 = rng.sample(StandardNormal);
+        let slip = (rover.slip_fraction.get(class) * (1.0 + 0.5 * slip_noise)).clamp(0.0, 0.9);
+        let mut d_true = heading_err * cmd * (1.0 - slip);
+        let noise = Vector2::new(rng.sample::<f64, _>(StandardNormal), rng.sample::<f64, _>(StandardNormal));
+        let mut d_est = if vo_ok { d_true + noise * (rover.vo_noise_fraction * cmd_len) } else { cmd };
+        let mut odo = d_est.norm();
+        if odo > distance_left {
+            let f = distance_left / odo;
+            d_true *= f;
+            d_est *= f;
+            cmd_len *= f;
+            odo = distance_left;
+        }
+        state.truth.position_m += d_true;
+        state.estimate.position_m += d_est;
+        state.uncertainty.drive(odo, novo_fraction);
+        out.distance_m += odo;
+        out.d_novo_m += odo * novo_fraction;
+        out.d_vo_m += odo * (1.0 - novo_fraction);
+        out.drive_time_s += cmd_len / rate_m_per_s;
+        path.progress_m += odo;
+        out.path_m.push(to_array(state.estimate.position_m));
+    }
+    out
+}
+
+/// Plan from cell `here` to route waypoint `waypoint` at uncertainty `r_m`.
+fn plan_path(
+    ctx: &DriveContext<'_>,
+    astar: &mut AStar,
+    here: usize,
+    waypoint: usize,
+    est: Vector2<f64>,
+    r_m: f64,
+) -> Option<FollowedPath> {
+    let grid = ctx.grid;
+    let goal = grid.cell_of(ctx.route[waypoint])?;
+    let buffer = ctx.rover.edge_buffer_m.max(1e-9);
+    let res = grid.geo.resolution_m_per_px;
+    let found = astar.plan(here, goal, 1.0, |i| {
+        if i != here && grid.closed(i, r_m) {
+            return f32::INFINITY;
+        }
+        let margin = f64::from(grid.clearance_m[i]) - r_m;
+        let edge_penalty = (1.0 - margin / buffer).clamp(0.0, 1.0);
+        (ctx.rover.terrain_cost.get(grid.terrain_class(i)) * (1.0 + edge_penalty)) as f32
+    })?;
+    let mut points: Vec<Vector2<f64>> = found.cells.iter().map(|&c| {
+        let p = grid.center_of(c);
+        Vector2::new(p[0], p[1])
+    }).collect();
+    points[0] = est;
+    if let Some(last) = points.last_mut() {
+        let wp = ctx.route[waypoint];
+        *last = Vector2::new(wp[0], wp[1]);
+    }
+    let mut cum_len_m = Vec::with_capacity(points.len());
+    let mut acc = 0.0;
+    for (i, p) in points.iter().enumerate() {
+        if i > 0 {
+            acc += (p - points[i - 1]).norm();
+        }
+        cum_len_m.push(acc);
+    }
+    let _ = res;
+    let mut suffix_min = vec![f32::INFINITY; found.cells.len()];
+    let mut m = f32::INFINITY;
+    for (k, &c) in found.cells.iter().enumerate().rev() {
+        if k > 0 {
+            m = m.min(grid.clearance_m[c]);
+        }
+        suffix_min[k] = m;
+    }
+    Some(FollowedPath { waypoint, points, cum_len_m, cells: found.cells, suffix_min, progress_m: 0.0 })
+}
+
+fn to_array(v: Vector2<f64>) -> [f64; 2] {
+    [v.x, v.y]
+}

@@ -1,0 +1,131 @@
+//! The operations calendar: which sols get a new plan, which are restricted, when data reaches
+//! Earth (paper 000 §8).
+//!
+//! A plan is uplinked on a sol with `uplink = true` and covers every sol up to the next uplink
+//! (a weekend plan covers three sols). A sol's post-drive data (the panorama, the localization
+//! result) goes down in the first downlink pass at or after that sol; it can be used to plan the
+//! uplink of the *next* sol only if that sol is not **restricted**, and any later uplink otherwise.
+
+use crate::time::SolSeconds;
+
+/// How a plan was built (replays take it from the record; strategies fix it).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Planning {
+    /// Ground-in-the-loop: plan only from a ground-localized position, and drive only on sols
+    /// whose post-drive data reaches Earth before the next plan is built.
+    Ground,
+    /// Opportunistic extension: breadcrumb waypoints appended at every uplink, planned without
+    /// knowing where the rover ended; drive every sol the calendar allows.
+    Extension,
+}
+
+/// What happened on a historic sol (replays only).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct HistoricSol {
+    /// Odometry distance driven, metres.
+    pub distance_m: f64,
+    /// Of which without VO, metres.
+    pub novo_m: f64,
+}
+
+/// One sol of the calendar.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct SolEntry {
+    /// Mission sol number.
+    pub sol: u32,
+    /// A new plan is uplinked this morning.
+    pub uplink: bool,
+    /// The previous sol's data arrives too late to plan this sol's uplink.
+    pub restricted: bool,
+    /// A downlink pass after the drive carries this sol's post-drive data.
+    pub downlink: bool,
+    /// Time of that pass, when it comes in the afternoon: a ground-planned drive that must get its
+    /// panorama down on it ends early enough to take the panorama first.
+    pub downlink_lmst: Option<SolSeconds>,
+    /// Driving is allowed this sol (false: science sol, holiday, conjunction, …).
+    pub drive_allowed: bool,
+    /// How the plan uplinked this sol was built historically (replays).
+    pub historic_planning: Option<Planning>,
+    /// What the rover did historically (replays).
+    pub historic: Option<HistoricSol>,
+}
+
+/// The calendar of a scenario: consecutive sols, the first with an uplink.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Calendar {
+    /// The sols, consecutive and in order.
+    pub sols: Vec<SolEntry>,
+    /// Start of the daily drive window (LMST).
+    pub drive_start: SolSeconds,
+    /// End of the daily drive window (LMST).
+    pub drive_end: SolSeconds,
+}
+
+impl Calendar {
+    /// Index of the next uplink strictly after index `i` (`None`: beyond the calendar).
+    #[must_use]
+    pub fn next_uplink_after(&self, i: usize) -> Option<usize> {
+        (i + 1..self.sols.len()).find(|&j| self.sols[j].uplink)
+    }
+
+    /// Whether the post-drive data of sol index `s` is on Earth in time to plan the uplink at
+    /// index `u`. An uplink beyond the calendar (`None`) is assumed to have everything.
+    #[must_use]
+    pub fn data_available(&self, s: usize, u: Option<usize>) -> bool {
+        let Some(u) = u else { return true };
+        let Some(pass) = (s..self.sols.len()).find(|&t| self.sols[t].downlink) else {
+            return false;
+        };
+        u >= pass + 2 || (u == pass + 1 && !self.sols[u].restricted)
+    }
+
+    /// Length of the drive window, seconds.
+    #[must_use]
+    pub fn drive_window_s(&self) -> u32 {
+        self.drive_end.0.saturating_sub(self.drive_start.0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sol(sol: u32, uplink: bool, restricted: bool, downlink: bool) -> SolEntry {
+        SolEntry {
+            sol,
+            uplink,
+            restricted,
+            downlink,
+            downlink_lmst: None,
+            drive_allowed: true,
+            historic_planning: None,
+            historic: None,
+        }
+    }
+
+    /// Sols 402-407 of paper 000 §8: a Wednesday plan (402-403) before a restricted Friday, a
+    /// weekend plan (404-406) with no pass on 406.
+    #[test]
+    fn paper_week_data_availability() {
+        let cal = Calendar {
+            sols: vec![
+                sol(402, true, false, true),
+                sol(403, false, false, true),
+                sol(404, true, true, true),
+                sol(405, false, false, true),
+                sol(406, false, false, false),
+                sol(407, true, false, true),
+            ],
+            drive_start: SolSeconds(0),
+            drive_end: SolSeconds(1),
+        };
+        assert!(cal.data_available(0, Some(2)), "402's panorama is in for the Friday plan");
+        assert!(!cal.data_available(1, Some(2)), "403's is not: Friday is restricted");
+        assert!(cal.data_available(3, Some(5)), "405's is in for Monday");
+        assert!(!cal.data_available(4, Some(5)), "406 has no pass");
+        assert!(cal.data_available(4, None));
+        assert_eq!(cal.next_uplink_after(0), Some(2));
+        assert_eq!(cal.next_uplink_after(5), None);
+    }
+}

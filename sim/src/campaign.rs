@@ -1,0 +1,319 @@
+//! The multi-sol runner: one strategy over a scenario's calendar and route.
+//!
+//! Each sol: an uplink (if any) starts a plan — the ground localizes the rover if it has the
+//! last drive's data and decides which of the plan's sols drive ([`Planning`]) — then the rover
+//! drives ([`crate::autonav`]) within the sol's budget, then, under onboard strategies, localizes
+//! itself. A fault halts driving until the ground has seen it. Everything random comes from one
+//! ChaCha8 stream per (scenario seed, strategy), so a run is reproducible bit for bit.
+
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+
+use crate::astar::AStar;
+use crate::autonav::{DriveContext, DriveLimits, RoverParams, RoverState, VoSource, drive_sol};
+use crate::calendar::{Calendar, Planning};
+use crate::localizer::{LocalizationResult, StatisticalLocalizer};
+use crate::outcome::{CampaignOutcome, FaultKind, LegClearance, LocalizationEvent, SolRecord, Totals};
+use crate::planning_grid::PlanningGrid;
+use crate::pose::estimate_error_m;
+use crate::strategy::Strategy;
+use crate::uncertainty::UncertaintyModel;
+use crate::widest_path::widest_path;
+
+/// Everything a campaign run needs (resolved from a scenario file by the binary).
+#[derive(Clone, Debug)]
+pub struct Campaign {
+    /// Scenario name (for reports).
+    pub name: String,
+    /// Master seed of every random draw.
+    pub seed: u64,
+    /// Route waypoints, map metres; waypoint 0 is the start.
+    pub route: Vec<[f64; 2]>,
+    /// Operations calendar.
+    pub calendar: Calendar,
+    /// Rover and AutoNav settings.
+    pub rover: RoverParams,
+    /// Uncertainty growth.
+    pub model: UncertaintyModel,
+    /// Onboard localizer (statistical model).
+    pub localizer: StatisticalLocalizer,
+    /// Operator margin added to the localizer's σ after an onboard localization, metres.
+    pub operator_margin_m: f64,
+    /// Post-drive imaging before a downlink pass, seconds (a ground-planned drive whose panorama
+    /// must make an afternoon pass stops this long before it).
+    pub post_drive_imaging_s: u32,
+    /// Extension drives without onboard localization stop after this many sols without a
+    /// localization (paper 000 §8: "not more than three sols").
+    pub max_extension_sols: u32,
+    /// The planning grid.
+    pub grid: PlanningGrid,
+}
+
+/// Per-leg passage clearance of the route (independent of strategy).
+///
+/// Leg `i` runs from waypoint `i − 1` to waypoint `i`; its clearance is the largest uncertainty
+/// radius at which a path between them still exists (a maximin path over cell clearance, slope
+/// hazards excluded), searched within a window around the leg.
+#[must_use]
+pub fn leg_clearances(c: &Campaign) -> Vec<LegClearance> {
+    let g = &c.grid;
+    let window_margin_cells = (150.0 / g.geo.resolution_m_per_px).ceil() as usize;
+    (1..c.route.len())
+        .map(|i| {
+            let ends = (g.cell_of(c.route[i - 1]), g.cell_of(c.route[i]));
+            let clearance_m = match ends {
+                (Some(a), Some(b)) => {
+                    let (ca, ra, cb, rb) = (a % g.width, a / g.width, b % g.width, b / g.width);
+                    let window = (
+                        ca.min(cb).saturating_sub(window_margin_cells),
+                        ra.min(rb).saturating_sub(window_margin_cells),
+                        (ca.max(cb) + window_margin_cells).min(g.width - 1),
+                        (ra.max(rb) + window_margin_cells).min(g.height - 1),
+                    );
+                    widest_path(g.width, g.height, &g.clearance_m, |k| !g.hazard[k], a, b, Some(window))
+                        .map(f64::from)
+                }
+                _ => None,
+            };
+            LegClearance { to_waypoint: i, clearance_m }
+        })
+        .collect()
+}
+
+/// Run `strategy` over the campaign. `legs` comes from [`leg_clearances`].
+#[must_use]
+pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> CampaignOutcome {
+    let cal = &c.calendar;
+    let mut rng = ChaCha8Rng::seed_from_u64(c.seed);
+    rng.set_stream(strategy.stream_id());
+    let mut astar = AStar::new(c.grid.width, c.grid.height);
+    let ctx = DriveContext { grid: &c.grid, route: &c.route, rover: &c.rover, model: &c.model };
+    let mut state = RoverState::new(c.route[0], c.model.initial_margin_m);
+
+    let mut records = Vec::with_capacity(cal.sols.len());
+    let mut last_drive: Option<usize> = None;
+    let mut moved_since_ground_fix = false;
+    let mut halted_by_fault: Option<usize> = None;
+    let mut sols_since_localization = 0u32;
+    let mut goal_sol: Option<u32> = None;
+    // Per plan: the sols that may drive and why the others may not.
+    let mut plan_uplink = cal.sols.first().map_or(0, |s| s.sol);
+    let mut plan_drive: Vec<Option<&'static str>> = vec![Some("no plan uplinked yet"); cal.sols.len()];
+    let mut plan_last_drive: Option<usize> = None;
+    let mut planning = Planning::Ground;
+
+    for (idx, entry) in cal.sols.iter().enumerate() {
+        let r_before = state.uncertainty.radius_m(&c.model);
+        let mut ground_event = None;
+        if entry.uplink {
+            plan_uplink = entry.sol;
+            let next_uplink = cal.next_uplink_after(idx);
+            let plan_end = next_uplink.unwrap_or(cal.sols.len());
+            let ground_knows = last_drive.is_none_or(|s| cal.data_available(s, Some(idx)));
+            planning = strategy.planning().or(entry.historic_planning).unwrap_or(Planning::Ground);
+            if ground_knows && halted_by_fault.is_some() {
+                halted_by_fault = None;
+            }
+            if ground_knows && moved_since_ground_fix {
+                // MOB_GROUND_LOCALIZED_HERE with the plan: the mapping specialists matched the
+                // last post-drive panorama to the orbital map.
+                state.estimate.position_m = state.truth.position_m;
+                state.uncertainty.reset_ground();
+                state.clear_path();
+                moved_since_ground_fix = false;
+                sols_since_localization = 0;
+                ground_event = Some(LocalizationEvent {
+                    kind: "ground",
+                    applied: true,
+                    reason: None,
+                    error_m: Some(0.0),
+                    uncertainty_after_m: state.uncertainty.radius_m(&c.model),
+                });
+            }
+            plan_last_drive = None;
+            for j in idx..plan_end {
+                let e = &cal.sols[j];
+                plan_drive[j] = if strategy == Strategy::Replay {
+                    match e.historic {
+                        Some(h) if h.distance_m > 0.0 => None,
+                        _ => Some("no drive in the historic record"),
+                    }
+                } else {
+                    match planning {
+                        Planning::Extension => None,
+                        Planning::Ground if !ground_knows => {
+                            Some("rover position not yet known on the ground: awaiting post-drive data")
+                        }
+                        Planning::Ground => {
+                            if e.drive_allowed && cal.data_available(j, next_uplink) {
+                                plan_last_drive = Some(j);
+                            }
+                            None
+                        }
+                    }
+                };
+            }
+            if planning == Planning::Ground && strategy != Strategy::Replay && ground_knows {
+                for (j, slot) in plan_drive.iter_mut().enumerate().take(plan_end).skip(idx) {
+                    if plan_last_drive.is_none_or(|l| j > l) {
+                        *slot = Some("post-drive data would not reach Earth in time for the next plan");
+                    }
+                }
+            }
+        }
+
+        let skip_reason: Option<String> = if goal_sol.is_some() {
+            Some("route complete".into())
+        } else if !entry.drive_allowed && strategy != Strategy::Replay {
+            Some("no drive in the calendar".into())
+        } else if halted_by_fault.is_some() {
+            Some("halted after a fault: awaiting ground review".into())
+        } else if let Some(reason) = plan_drive[idx] {
+            Some(reason.into())
+        } else if strategy == Strategy::Extension && sols_since_localization >= c.max_extension_sols {
+            Some(format!("extension limit: {} sols without a localization", c.max_extension_sols))
+        } else {
+            None
+        };
+
+        let start_uncertainty_m = state.uncertainty.radius_m(&c.model);
+        let start_waypoint = state.next_waypoint;
+        let mut record = SolRecord {
+            sol: entry.sol,
+            plan_uplink_sol: plan_uplink,
+            drove: skip_reason.is_none(),
+            skip_reason,
+            distance_m: 0.0,
+            d_vo_m: 0.0,
+            d_novo_m: 0.0,
+            drive_time_s: 0.0,
+            start_uncertainty_m,
+            end_uncertainty_m: start_uncertainty_m,
+            fault: None,
+            passage_clearance_m: None,
+            ground_localization: ground_event,
+            onboard_localization: None,
+            end_position_m: [0.0; 2],
+            end_true_position_m: [0.0; 2],
+            truth_error_m: estimate_error_m(&state.truth, &state.estimate),
+            truth_inside_disc: true,
+            reached_goal: false,
+            plans: 0,
+            path_m: Vec::new(),
+        };
+        let _ = r_before;
+
+        if record.drove {
+            let (limits, vo) = match (strategy, entry.historic) {
+                (Strategy::Replay, Some(h)) => (
+                    DriveLimits { max_distance_m: Some(h.distance_m), max_time_s: None },
+                    VoSource::Historic { novo_fraction: if h.distance_m > 0.0 { h.novo_m / h.distance_m } else { 0.0 } },
+                ),
+                _ => {
+                    let mut end = cal.drive_end.0;
+                    if planning == Planning::Ground && plan_last_drive == Some(idx) {
+                        if let Some(pass) = entry.downlink_lmst {
+                            end = end.min(pass.0.saturating_sub(c.post_drive_imaging_s));
+                        }
+                    }
+                    let window_s = f64::from(end.saturating_sub(cal.drive_start.0));
+                    (DriveLimits { max_distance_m: None, max_time_s: Some(window_s) }, VoSource::Terrain)
+                }
+            };
+            let result = drive_sol(&ctx, &mut state, limits, vo, &mut rng, &mut astar);
+            record.distance_m = result.distance_m;
+            record.d_vo_m = result.d_vo_m;
+            record.d_novo_m = result.d_novo_m;
+            record.drive_time_s = result.drive_time_s;
+            record.plans = result.plans;
+            record.path_m = result.path_m;
+            record.reached_goal = result.reached_goal;
+            if result.fault.is_some() {
+                halted_by_fault = Some(idx);
+            }
+            record.fault = result.fault;
+            last_drive = Some(idx);
+            moved_since_ground_fix = true;
+            sols_since_localization += 1;
+            if result.reached_goal {
+                goal_sol = Some(entry.sol);
+            }
+            let end_waypoint = state.next_waypoint.min(c.route.len() - 1).max(1);
+            record.passage_clearance_m = legs
+                .iter()
+                .filter(|l| l.to_waypoint >= start_waypoint.max(1) && l.to_waypoint <= end_waypoint)
+                .map(|l| l.clearance_m.unwrap_or(f64::NEG_INFINITY))
+                .reduce(f64::min);
+        }
+        record.end_uncertainty_m = state.uncertainty.radius_m(&c.model);
+        record.truth_error_m = estimate_error_m(&state.truth, &state.estimate);
+        record.truth_inside_disc = record.truth_error_m <= record.end_uncertainty_m + 1e-9;
+
+        if record.drove && strategy.onboard_localization() {
+            // MOB_WRITE_ONBD_INPUT_FILE → HBS run, reboot, run, compare → MOB_APPLY_ONBD_LOCALIZATION
+            let event = match c.localizer.localize(&mut rng) {
+                LocalizationResult::Accepted { error_m, sigma_m } => {
+                    state.estimate.position_m = state.truth.position_m + nalgebra::Vector2::new(error_m[0], error_m[1]);
+                    state.uncertainty.reset_onboard(sigma_m, c.operator_margin_m);
+                    state.clear_path();
+                    sols_since_localization = 0;
+                    LocalizationEvent {
+                        kind: "onboard",
+                        applied: true,
+                        reason: None,
+                        error_m: Some(error_m[0].hypot(error_m[1])),
+                        uncertainty_after_m: state.uncertainty.radius_m(&c.model),
+                    }
+                }
+                LocalizationResult::Rejected { reason } => LocalizationEvent {
+                    kind: "onboard",
+                    applied: false,
+                    reason: Some(reason.into()),
+                    error_m: None,
+                    uncertainty_after_m: state.uncertainty.radius_m(&c.model),
+                },
+            };
+            record.onboard_localization = Some(event);
+        }
+        record.end_position_m = [state.estimate.position_m.x, state.estimate.position_m.y];
+        record.end_true_position_m = [state.truth.position_m.x, state.truth.position_m.y];
+        records.push(record);
+    }
+
+    let totals = totals(c, &records, goal_sol, &state);
+    CampaignOutcome { strategy: strategy.name().into(), seed: c.seed, sols: records, totals }
+}
+
+fn totals(c: &Campaign, records: &[SolRecord], goal_sol: Option<u32>, state: &RoverState) -> Totals {
+    let first = records.first().map_or(0, |r| r.sol);
+    let mut remaining = 0.0;
+    if state.next_waypoint < c.route.len() {
+        let pos = state.estimate.position_m;
+        let wp = c.route[state.next_waypoint];
+        remaining += (pos - nalgebra::Vector2::new(wp[0], wp[1])).norm();
+        for w in c.route[state.next_waypoint..].windows(2) {
+            remaining += ((w[1][0] - w[0][0]).powi(2) + (w[1][1] - w[0][1]).powi(2)).sqrt();
+        }
+    }
+    Totals {
+        sols: records.len() as u32,
+        sols_to_goal: goal_sol.map(|g| g - first + 1),
+        drive_sols: records.iter().filter(|r| r.drove).count() as u32,
+        distance_m: records.iter().map(|r| r.distance_m).sum(),
+        no_path_faults: records.iter().filter(|r| r.fault.as_ref().is_some_and(|f| f.kind == FaultKind::NoPath)).count() as u32,
+        faults: records.iter().filter(|r| r.fault.is_some()).count() as u32,
+        max_uncertainty_m: records.iter().map(|r| r.end_uncertainty_m.max(r.start_uncertainty_m)).fold(0.0, f64::max),
+        ground_localizations: records.iter().filter(|r| r.ground_localization.is_some()).count() as u32,
+        onboard_localizations_applied: records
+            .iter()
+            .filter(|r| r.onboard_localization.as_ref().is_some_and(|l| l.applied))
+            .count() as u32,
+        onboard_localizations_rejected: records
+            .iter()
+            .filter(|r| r.onboard_localization.as_ref().is_some_and(|l| !l.applied))
+            .count() as u32,
+        truth_outside_disc: records.iter().filter(|r| !r.truth_inside_disc).count() as u32,
+        goal_reached: goal_sol.is_some(),
+        route_remaining_m: remaining,
+    }
+}

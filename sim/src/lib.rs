@@ -1,0 +1,39 @@
+//! # sim — the sol-by-sol traverse simulator
+//!
+//! One sol flows: the [`calendar`] says what the uplink knows → the [`strategy`] decides whether
+//! the rover drives and how it is localized → [`autonav`] drives the route in steps on the
+//! [`planning_grid`] (zones grown by the [`uncertainty`] disc, slope hazards), faulting with
+//! `NO_PATH` when no path is left → end-of-sol localization ([`localizer`]) → a [`SolRecord`] in
+//! the [`outcome`] → next sol. [`campaign::run_campaign`] runs all of it.
+//!
+//! - [`uncertainty`]: `r = margin + k_vo·d_vo + k_novo·d_novo` and its reset events.
+//! - [`pose`]: the true pose and the rover's estimate, kept in different types.
+//! - [`planning_grid`]: per-cell clearance to the zones, slope hazards, terrain class.
+//! - [`edt`], [`astar`], [`widest_path`]: the grid algorithms (exact EDT, A*, bottleneck path).
+//! - [`autonav`]: one sol's drive: plan, step, VO, slip, faults.
+//! - [`localizer`]: the statistical onboard localizer (0.36 m mean / 0.93 m p99, paper 000 §4).
+//! - [`calendar`], [`strategy`]: operations calendar, data availability and the four strategies.
+//! - [`campaign`]: the multi-sol runner; [`outcome`]: what it reports.
+#![warn(missing_docs)]
+
+pub mod astar;
+pub mod autonav;
+pub mod calendar;
+pub mod campaign;
+pub mod edt;
+pub mod localizer;
+pub mod outcome;
+pub mod planning_grid;
+pub mod pose;
+pub mod strategy;
+pub mod time;
+pub mod uncertainty;
+pub mod widest_path;
+
+pub use autonav::RoverParams;
+pub use calendar::{Calendar, SolEntry};
+pub use campaign::{Campaign, run_campaign};
+pub use outcome::{CampaignOutcome, Fault, FaultKind, SolRecord, Totals};
+pub use planning_grid::PlanningGrid;
+pub use strategy::Strategy;
+pub use uncertainty::UncertaintyModel;

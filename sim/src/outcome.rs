@@ -1,0 +1,185 @@
+//! What a campaign run reports: one [`SolRecord`] per sol and the [`Totals`].
+//!
+//! Bad outcomes are data, not errors: a `NO_PATH` is a [`Fault`] in the sol record, a rejected
+//! localization is a [`LocalizationEvent`] with `applied = false` and a reason.
+
+use serde::Serialize;
+
+/// Kind of drive-ending fault.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum FaultKind {
+    /// No path to the next waypoint through the grown zones and hazards.
+    #[serde(rename = "NO_PATH")]
+    NoPath,
+    /// The rover's estimated position lies inside a grown keep-out.
+    #[serde(rename = "KEEP_OUT")]
+    KeepOut,
+    /// The rover's estimated position lies outside the shrunk keep-in union.
+    #[serde(rename = "KEEP_IN")]
+    KeepIn,
+}
+
+impl FaultKind {
+    /// The flight-style name (`NO_PATH`, `KEEP_OUT`, `KEEP_IN`).
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            FaultKind::NoPath => "NO_PATH",
+            FaultKind::KeepOut => "KEEP_OUT",
+            FaultKind::KeepIn => "KEEP_IN",
+        }
+    }
+}
+
+/// A fault that ended a drive.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Fault {
+    /// What happened.
+    pub kind: FaultKind,
+    /// Metres driven that sol before the fault.
+    pub after_m: f64,
+    /// Uncertainty radius at the fault, metres.
+    pub uncertainty_m: f64,
+    /// Estimated position at the fault, map metres.
+    pub position_m: [f64; 2],
+}
+
+/// A localization at the start (ground) or end (onboard) of a sol.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LocalizationEvent {
+    /// `"ground"` or `"onboard"`.
+    pub kind: &'static str,
+    /// Whether the result was applied to the rover's estimate.
+    pub applied: bool,
+    /// Why it was not applied (`None` when applied).
+    pub reason: Option<String>,
+    /// Distance from the applied estimate to the truth, metres (`None` when not applied).
+    pub error_m: Option<f64>,
+    /// Uncertainty radius after the event, metres.
+    pub uncertainty_after_m: f64,
+}
+
+/// One sol of one campaign run.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SolRecord {
+    /// Mission sol number.
+    pub sol: u32,
+    /// Sol of the uplink whose plan covers this sol.
+    pub plan_uplink_sol: u32,
+    /// Whether the rover was commanded to drive.
+    pub drove: bool,
+    /// Why it was not commanded to drive (`None` when it drove).
+    pub skip_reason: Option<String>,
+    /// Odometry distance driven, metres.
+    pub distance_m: f64,
+    /// Of which with VO, metres.
+    pub d_vo_m: f64,
+    /// Of which without VO, metres.
+    pub d_novo_m: f64,
+    /// Time spent driving, seconds.
+    pub drive_time_s: f64,
+    /// Uncertainty radius at the start of the sol's activities (after any ground localization).
+    pub start_uncertainty_m: f64,
+    /// Uncertainty radius at the end of the drive, before any end-of-sol localization.
+    pub end_uncertainty_m: f64,
+    /// The fault that ended the drive, if any.
+    pub fault: Option<Fault>,
+    /// Largest uncertainty at which every route leg driven this sol stays open, metres
+    /// (the passage clearance: "this passage closes at r = …").
+    pub passage_clearance_m: Option<f64>,
+    /// Ground localization applied with this sol's uplink.
+    pub ground_localization: Option<LocalizationEvent>,
+    /// Onboard localization after this sol's drive.
+    pub onboard_localization: Option<LocalizationEvent>,
+    /// Estimated position at the end of the sol (after localization), map metres.
+    pub end_position_m: [f64; 2],
+    /// True position at the end of the sol, map metres.
+    pub end_true_position_m: [f64; 2],
+    /// Estimate-to-truth distance at the end of the drive, before localization, metres.
+    pub truth_error_m: f64,
+    /// Whether the uncertainty disc contained the truth at the end of the drive.
+    pub truth_inside_disc: bool,
+    /// Whether the rover reached the end of the route this sol.
+    pub reached_goal: bool,
+    /// Number of path plans (A* runs) this sol.
+    pub plans: u32,
+    /// Estimated positions along the drive, map metres (exported as GeoJSON, not in the JSON).
+    #[serde(skip)]
+    pub path_m: Vec<[f64; 2]>,
+}
+
+/// Totals of one campaign run.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Totals {
+    /// Sols simulated.
+    pub sols: u32,
+    /// Sols from the first sol to the one that reached the goal, inclusive (`None` if not reached).
+    pub sols_to_goal: Option<u32>,
+    /// Sols with a commanded drive.
+    pub drive_sols: u32,
+    /// Metres driven in all.
+    pub distance_m: f64,
+    /// `NO_PATH` faults.
+    pub no_path_faults: u32,
+    /// All faults.
+    pub faults: u32,
+    /// Largest uncertainty radius reached, metres.
+    pub max_uncertainty_m: f64,
+    /// Ground localizations applied.
+    pub ground_localizations: u32,
+    /// Onboard localizations applied.
+    pub onboard_localizations_applied: u32,
+    /// Onboard localizations rejected by validity checks.
+    pub onboard_localizations_rejected: u32,
+    /// Sols whose end-of-drive disc did not contain the truth.
+    pub truth_outside_disc: u32,
+    /// Whether the end of the route was reached.
+    pub goal_reached: bool,
+    /// Route metres left at the end of the run (distance along the remaining waypoints).
+    pub route_remaining_m: f64,
+}
+
+/// Route-leg clearance, computed once per scenario (independent of strategy).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LegClearance {
+    /// Index of the leg's destination waypoint in the route (leg `i` runs from waypoint `i−1`).
+    pub to_waypoint: usize,
+    /// Largest uncertainty radius at which a path along this leg exists, metres
+    /// (`None`: no path even at zero uncertainty).
+    pub clearance_m: Option<f64>,
+}
+
+/// One strategy's run over a scenario.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CampaignOutcome {
+    /// Strategy name (`replay`, `ground`, `onboard`, `extension`, `extension+onboard`).
+    pub strategy: String,
+    /// Seed of the run's random stream.
+    pub seed: u64,
+    /// One record per sol, in order.
+    pub sols: Vec<SolRecord>,
+    /// Totals.
+    pub totals: Totals,
+}
+
+impl CampaignOutcome {
+    /// The record of sol `sol`, if simulated.
+    #[must_use]
+    pub fn sol(&self, sol: u32) -> Option<&SolRecord> {
+        self.sols.iter().find(|s| s.sol == sol)
+    }
+
+    /// How many sols, counted from `from_sol` inclusive, it took to drive `distance_m` metres
+    /// (`None` if never reached).
+    #[must_use]
+    pub fn sols_to_cover(&self, from_sol: u32, distance_m: f64) -> Option<u32> {
+        let mut total = 0.0;
+        for s in self.sols.iter().filter(|s| s.sol >= from_sol) {
+            total += s.distance_m;
+            if total >= distance_m - 1e-9 {
+                return Some(s.sol - from_sol + 1);
+            }
+        }
+        None
+    }
+}

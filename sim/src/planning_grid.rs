@@ -1,0 +1,152 @@
+//! The grid AutoNav plans on: how much uncertainty each cell tolerates, slope hazards, terrain.
+//!
+//! Zones are static, only the uncertainty radius `r` changes during a drive, so the grid stores
+//! per cell the largest `r` at which the cell is still drivable ("clearance"):
+//! `keep_out_clearance = d(cell, nearest keep-out) − footprint` and
+//! `keep_in_clearance = d(cell, edge of the keep-in union) − footprint`. A cell is closed at
+//! radius `r` when its clearance is `≤ r` — exactly the Minkowski growth of the keep-outs (and
+//! shrinkage of the keep-ins) by a disc of radius `r + footprint`, evaluated at cell centres.
+//! Distances come from an exact Euclidean distance transform of the rasterised zones
+//! ([`crate::edt`]); a cell whose centre is inside a keep-out has distance 0, and a free cell's
+//! distance is the distance to the nearest inside cell centre less half a cell, so the zone edge is
+//! placed within one cell of where the polygon has it.
+//!
+//! Slope hazards (from the DEM) are not grown: the rover sees them with its own cameras.
+
+use maps::{GeoTransform, MapLayers, Raster, TerrainClass, ZoneSet};
+
+use crate::edt;
+
+/// How the planning grid is built (plain settings struct).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct GridParams {
+    /// Cell size in metres (default: 1.0).
+    pub resolution_m: f64,
+    /// Rover footprint radius added to every keep-out growth, metres (default: 1.5).
+    pub footprint_radius_m: f64,
+    /// Cells steeper than this are hazards, degrees (default: 25).
+    pub max_slope_deg: f64,
+}
+
+impl Default for GridParams {
+    fn default() -> Self {
+        Self { resolution_m: 1.0, footprint_radius_m: 1.5, max_slope_deg: 25.0 }
+    }
+}
+
+/// The planning grid of one map (row-major, row 0 = north, like every raster in `maps`).
+#[derive(Clone, Debug)]
+pub struct PlanningGrid {
+    /// Placement of the grid on the map.
+    pub geo: GeoTransform,
+    /// Columns.
+    pub width: usize,
+    /// Rows.
+    pub height: usize,
+    /// Largest `r` (metres) at which the cell is outside every grown keep-out.
+    pub keep_out_clearance_m: Vec<f32>,
+    /// Largest `r` (metres) at which the cell is inside the shrunk keep-in union.
+    pub keep_in_clearance_m: Vec<f32>,
+    /// `min` of the two clearances: the cell is closed when this is `≤ r`.
+    pub clearance_m: Vec<f32>,
+    /// Slope over the limit (never grown, never drivable).
+    pub hazard: Vec<bool>,
+    /// Terrain class code per cell (see [`TerrainClass::code`]; 0 = no data, treated as soil).
+    pub terrain: Vec<u8>,
+}
+
+impl PlanningGrid {
+    /// Build the grid over the extent of the map's DEM.
+    #[must_use]
+    pub fn build(zones: &ZoneSet, layers: &MapLayers, params: &GridParams) -> Self {
+        let (x0, y0, x1, y1) = layers.dem.extent_m();
+        let res = params.resolution_m;
+        let width = ((x1 - x0) / res).floor().max(1.0) as usize;
+        let height = ((y1 - y0) / res).floor().max(1.0) as usize;
+        let geo = GeoTransform::new(x0, y1, res);
+        let slope = layers.dem.slope_deg();
+        let mut hazard = vec![false; width * height];
+        let mut terrain = vec![0u8; width * height];
+        for row in 0..height {
+            for col in 0..width {
+                let (x, y) = geo.center_of(col, row);
+                let i = row * width + col;
+                hazard[i] = slope.sample_nearest(x, y).is_some_and(|s| f64::from(s) > params.max_slope_deg);
+                terrain[i] = layers.terrain.sample_nearest(x, y).unwrap_or(0);
+            }
+        }
+        Self::from_parts(zones, geo, width, height, params.footprint_radius_m, hazard, terrain)
+    }
+
+    /// Build a grid from explicit hazard and terrain layers (used by tests and benchmarks).
+    ///
+    /// # Panics
+    /// If `hazard` or `terrain` does not hold `width * height` cells.
+    #[must_use]
+    pub fn from_parts(
+        zones: &ZoneSet,
+        geo: GeoTransform,
+        width: usize,
+        height: usize,
+        footprint_radius_m: f64,
+        hazard: Vec<bool>,
+        terrain: Vec<u8>,
+    ) -> Self {
+        assert_eq!(hazard.len(), width * height, "hazard layer size");
+        assert_eq!(terrain.len(), width * height, "terrain layer size");
+        let res = geo.resolution_m_per_px;
+        let (keep_out_mask, keep_in_mask) = zones.rasterize(geo, width, height);
+        let outside_keep_in: Vec<bool> = keep_in_mask.iter().map(|inside| !inside).collect();
+        let to_clearance = |mask: &[bool]| -> Vec<f32> {
+            let sq = edt::squared_edt(mask, width, height);
+            sq.iter()
+                .zip(mask)
+                .map(|(&d2, &inside)| {
+                    let d = if inside { 0.0 } else { (f64::from(d2).sqrt() * res - 0.5 * res).max(0.0) };
+                    (d - footprint_radius_m) as f32
+                })
+                .collect()
+        };
+        let keep_out_clearance_m = to_clearance(&keep_out_mask);
+        let keep_in_clearance_m = to_clearance(&outside_keep_in);
+        let clearance_m = keep_out_clearance_m.iter().zip(&keep_in_clearance_m).map(|(a, b)| a.min(*b)).collect();
+        Self { geo, width, height, keep_out_clearance_m, keep_in_clearance_m, clearance_m, hazard, terrain }
+    }
+
+    /// Index of the cell containing map point `p` (metres), or `None` off the grid.
+    #[must_use]
+    pub fn cell_of(&self, p: [f64; 2]) -> Option<usize> {
+        let (c, r) = self.geo.pixel_of(p[0], p[1]);
+        if !(c >= 0.0 && r >= 0.0) {
+            return None;
+        }
+        let (c, r) = (c.floor() as usize, r.floor() as usize);
+        (c < self.width && r < self.height).then_some(r * self.width + c)
+    }
+
+    /// Map position (metres) of the centre of cell `index`.
+    #[must_use]
+    pub fn center_of(&self, index: usize) -> [f64; 2] {
+        let (x, y) = self.geo.center_of(index % self.width, index / self.width);
+        [x, y]
+    }
+
+    /// Whether cell `index` is closed at uncertainty `r_m`: inside a grown keep-out, outside the
+    /// shrunk keep-in union, or a slope hazard.
+    #[must_use]
+    pub fn closed(&self, index: usize, r_m: f64) -> bool {
+        self.hazard[index] || f64::from(self.clearance_m[index]) <= r_m
+    }
+
+    /// Terrain class of cell `index` (no data counts as soil).
+    #[must_use]
+    pub fn terrain_class(&self, index: usize) -> TerrainClass {
+        TerrainClass::from_code(self.terrain[index]).unwrap_or(TerrainClass::Soil)
+    }
+
+    /// The clearance layer as a raster (for export and inspection).
+    #[must_use]
+    pub fn clearance_raster(&self) -> Raster<f32> {
+        Raster { width: self.width, height: self.height, geo: self.geo, data: self.clearance_m.clone() }
+    }
+}

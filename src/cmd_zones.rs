@@ -1,0 +1,331 @@
+//! `solsim zones check`: how far points are from a map's keep-in and keep-out zones.
+//!
+//! Reads a zones GeoJSON ([`maps::ZoneSet`]) and a points CSV, and prints one row per point:
+//!
+//! ```text
+//! name        x_m     y_m  keep_out_distance_m  keep_in_edge_distance_m  max_uncertainty_m
+//! L notch  130.000 140.000               15.000                   81.205             14.250
+//! ```
+//!
+//! - `keep_out_distance_m`: distance to the nearest keep-out zone (0 inside one); `inf` without
+//!   keep-outs.
+//! - `keep_in_edge_distance_m`: inside the union of keep-in zones, the distance to its edge; 0
+//!   outside it; `inf` without keep-ins.
+//! - `max_uncertainty_m` = min(the two) − footprint radius: the largest position error for which
+//!   the rover's footprint stays clear of every keep-out and inside the keep-in area. Negative means
+//!   it is already touching a forbidden area there.
+//!
+//! `--json` prints the same as an array of objects with those keys (infinite values as `null`,
+//! full precision). `peers/zones_reference.py` prints the same table computed with shapely.
+
+use anyhow::{Context, anyhow, bail};
+use maps::ZoneSet;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// Check points against a map's zones: distance to the nearest keep-out zone, distance to the
+/// edge of the keep-in area, and the largest position uncertainty each point tolerates
+/// (max_uncertainty_m = min of the two distances − footprint radius; negative = already closed).
+#[derive(Debug, Clone, clap::Args)]
+pub struct ZonesCheckArgs {
+    /// Zones file: a GeoJSON FeatureCollection of Polygon/MultiPolygon features in map metres,
+    /// with properties `kind` ("keep_in" or "keep_out") and optional `name`.
+    #[arg(long, value_name = "FILE")]
+    pub zones: PathBuf,
+
+    /// Points CSV: a header row naming the columns x_m, y_m and optionally name (any order), then
+    /// one point per row in map metres.
+    #[arg(long, value_name = "FILE")]
+    pub points: PathBuf,
+
+    /// Rover footprint radius in metres, subtracted from the nearer zone distance to give
+    /// max_uncertainty_m.
+    #[arg(long, value_name = "METRES", default_value_t = 0.0)]
+    pub footprint_radius_m: f64,
+
+    /// Print a JSON array of objects (infinite distances as null) instead of the table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Run `solsim zones check`, writing the table (or JSON) to `out`.
+///
+/// # Errors
+/// An unreadable or invalid zones file (a [`maps::ZoneError`]) or points file (naming the line and
+/// column), a negative or non-finite footprint radius, or a failed write.
+pub fn run(args: &ZonesCheckArgs, out: &mut dyn Write) -> anyhow::Result<()> {
+    let footprint = args.footprint_radius_m;
+    if !(footprint.is_finite() && footprint >= 0.0) {
+        bail!("--footprint-radius-m: expected a finite number of metres >= 0, got {footprint}");
+    }
+    let zones = ZoneSet::load(&args.zones)?;
+    let points = read_points(&args.points)?;
+    let xy: Vec<[f64; 2]> = points.iter().map(|p| p.xy).collect();
+    let clearances = zones.clearances(&xy, footprint);
+    let rows: Vec<Row<'_>> = points
+        .iter()
+        .zip(&clearances)
+        .map(|(p, c)| Row {
+            name: &p.name,
+            x_m: p.xy[0],
+            y_m: p.xy[1],
+            keep_out_distance_m: c.keep_out_distance_m,
+            keep_in_edge_distance_m: c.keep_in_edge_distance_m,
+            max_uncertainty_m: c.max_uncertainty_m,
+        })
+        .collect();
+    if args.json { write_json(&rows, out) } else { write_table(&rows, out) }.context("writing the zones check output")
+}
+
+/// Column names, in output order.
+const COLUMNS: [&str; 6] =
+    ["name", "x_m", "y_m", "keep_out_distance_m", "keep_in_edge_distance_m", "max_uncertainty_m"];
+
+/// One output row.
+struct Row<'a> {
+    name: &'a str,
+    x_m: f64,
+    y_m: f64,
+    keep_out_distance_m: f64,
+    keep_in_edge_distance_m: f64,
+    max_uncertainty_m: f64,
+}
+
+impl Row<'_> {
+    fn numbers(&self) -> [f64; 5] {
+        [self.x_m, self.y_m, self.keep_out_distance_m, self.keep_in_edge_distance_m, self.max_uncertainty_m]
+    }
+}
+
+/// Fixed-width table: names left-aligned, numbers right-aligned with 3 decimals (`inf` when
+/// there are no zones of that kind), columns separated by two spaces.
+fn write_table(rows: &[Row<'_>], out: &mut dyn Write) -> std::io::Result<()> {
+    let cells: Vec<[String; 6]> = rows
+        .iter()
+        .map(|r| {
+            let n = r.numbers().map(|v| format!("{v:.3}"));
+            [r.name.to_owned(), n[0].clone(), n[1].clone(), n[2].clone(), n[3].clone(), n[4].clone()]
+        })
+        .collect();
+    let mut widths = COLUMNS.map(str::len);
+    for row in &cells {
+        for (w, cell) in widths.iter_mut().zip(row) {
+            *w = (*w).max(cell.chars().count());
+        }
+    }
+    let line = |values: [&str; 6]| -> String {
+        let mut s = format!("{:<w$}", values[0], w = widths[0]);
+        for (value, w) in values.iter().zip(widths).skip(1) {
+            s.push_str(&format!("  {value:>w$}"));
+        }
+        s
+    };
+    writeln!(out, "{}", line(COLUMNS))?;
+    for row in &cells {
+        writeln!(out, "{}", line(row.each_ref().map(String::as_str)))?;
+    }
+    Ok(())
+}
+
+/// JSON array of objects keyed like the table's columns; infinite distances become `null`.
+fn write_json(rows: &[Row<'_>], out: &mut dyn Write) -> std::io::Result<()> {
+    let finite = |v: f64| if v.is_finite() { serde_json::json!(v) } else { serde_json::Value::Null };
+    let array: Vec<serde_json::Value> = rows
+        .iter()
+        .map(|r| {
+            let mut object = serde_json::Map::new();
+            object.insert(COLUMNS[0].to_owned(), serde_json::json!(r.name));
+            for (key, value) in COLUMNS[1..].iter().zip(r.numbers()) {
+                object.insert((*key).to_owned(), finite(value));
+            }
+            serde_json::Value::Object(object)
+        })
+        .collect();
+    serde_json::to_writer_pretty(&mut *out, &array)?;
+    writeln!(out)
+}
+
+/// A point from the CSV.
+#[derive(Debug, Clone, PartialEq)]
+struct NamedPoint {
+    name: String,
+    xy: [f64; 2],
+}
+
+/// Read the points CSV at `path`.
+fn read_points(path: &Path) -> anyhow::Result<Vec<NamedPoint>> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| anyhow!("{}: cannot read points file: {e}", path.display()))?;
+    parse_points(&text, path)
+}
+
+/// Parse points CSV text: a header naming `x_m`, `y_m` and optionally `name` (any order, each
+/// once, nothing else), then one row per point; blank lines are skipped. A row without a name
+/// (or an empty one) is called `point-<k>`, `k` counting data rows from 0.
+fn parse_points(text: &str, path: &Path) -> anyhow::Result<Vec<NamedPoint>> {
+    let file = path.display();
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l)).filter(|(_, l)| !l.trim().is_empty());
+    let Some((header_line, header)) = lines.next() else {
+        bail!("{file}: empty file; expected a header row naming the columns x_m, y_m and optionally name");
+    };
+    let header = split_fields(header).map_err(|e| anyhow!("{file}: line {header_line}: {e}"))?;
+    let mut unknown = Vec::new();
+    let (mut x_col, mut y_col, mut name_col) = (None, None, None);
+    for (k, column) in header.iter().enumerate() {
+        let slot = match column.as_str() {
+            "x_m" => &mut x_col,
+            "y_m" => &mut y_col,
+            "name" => &mut name_col,
+            _ => {
+                unknown.push(format!("{column:?}"));
+                continue;
+            }
+        };
+        if slot.replace(k).is_some() {
+            bail!("{file}: line {header_line}: column {column} appears twice");
+        }
+    }
+    if !unknown.is_empty() {
+        bail!(
+            "{file}: line {header_line}: unknown column(s) {}; expected a header row naming x_m, y_m and optionally name",
+            unknown.join(", ")
+        );
+    }
+    let (Some(x_col), Some(y_col)) = (x_col, y_col) else {
+        let missing = if x_col.is_none() { "x_m" } else { "y_m" };
+        bail!("{file}: line {header_line}: missing column {missing}; expected x_m, y_m and optionally name");
+    };
+    let mut points = Vec::new();
+    for (line, text) in lines {
+        let fields = split_fields(text).map_err(|e| anyhow!("{file}: line {line}: {e}"))?;
+        if fields.len() != header.len() {
+            bail!(
+                "{file}: line {line}: expected {} fields ({}), got {}",
+                header.len(),
+                header.join(","),
+                fields.len()
+            );
+        }
+        let number = |col: usize| -> anyhow::Result<f64> {
+            let raw = &fields[col];
+            match raw.parse::<f64>() {
+                Ok(v) if v.is_finite() => Ok(v),
+                _ => bail!("{file}: line {line}, column {}: expected a finite number of metres, got {raw:?}", header[col]),
+            }
+        };
+        let xy = [number(x_col)?, number(y_col)?];
+        let name = match name_col.map(|c| fields[c].clone()) {
+            Some(name) if !name.is_empty() => name,
+            _ => format!("point-{}", points.len()),
+        };
+        points.push(NamedPoint { name, xy });
+    }
+    Ok(points)
+}
+
+/// Split one CSV line into fields: commas separate; a field may be double-quoted (with `""` for a
+/// quote inside); unquoted fields are trimmed.
+fn split_fields(line: &str) -> Result<Vec<String>, &'static str> {
+    let mut fields = Vec::new();
+    let mut chars = line.chars().peekable();
+    loop {
+        while chars.next_if(|c| *c == ' ' || *c == '\t').is_some() {}
+        let mut field = String::new();
+        if chars.next_if_eq(&'"').is_some() {
+            loop {
+                match chars.next() {
+                    Some('"') if chars.next_if_eq(&'"').is_some() => field.push('"'),
+                    Some('"') => break,
+                    Some(c) => field.push(c),
+                    None => return Err("unterminated quoted field"),
+                }
+            }
+            while chars.next_if(|c| *c == ' ' || *c == '\t').is_some() {}
+            match chars.next() {
+                None => {
+                    fields.push(field);
+                    return Ok(fields);
+                }
+                Some(',') => fields.push(field),
+                Some(_) => return Err("unexpected text after a quoted field"),
+            }
+        } else {
+            loop {
+                match chars.next() {
+                    None => {
+                        fields.push(field.trim().to_owned());
+                        return Ok(fields);
+                    }
+                    Some(',') => break,
+                    Some(c) => field.push(c),
+                }
+            }
+            fields.push(field.trim().to_owned());
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> anyhow::Result<Vec<NamedPoint>> {
+        parse_points(text, Path::new("points.csv"))
+    }
+
+    #[test]
+    fn columns_in_any_order_and_default_names() {
+        let pts = parse("y_m, name ,x_m\n2,\"a, b\",1\n\n4,,3\r\n").expect("valid");
+        assert_eq!(
+            pts,
+            vec![
+                NamedPoint { name: "a, b".into(), xy: [1.0, 2.0] },
+                NamedPoint { name: "point-1".into(), xy: [3.0, 4.0] }
+            ]
+        );
+        assert_eq!(parse("x_m,y_m\n").expect("header only"), vec![]);
+    }
+
+    #[test]
+    fn errors_name_file_line_and_column() {
+        let msg = |t: &str| parse(t).expect_err("invalid").to_string();
+        assert_eq!(
+            msg("name,x_m,y_m\na,1,2\nb,1,abc\n"),
+            "points.csv: line 3, column y_m: expected a finite number of metres, got \"abc\""
+        );
+        assert!(msg("x_m,y_m\nNaN,1\n").contains("line 2, column x_m"));
+        assert!(msg("x_m,y_m,z_m,foo\n").contains("line 1: unknown column(s) \"z_m\", \"foo\""));
+        assert!(msg("1.0,2.0\n").contains("unknown column(s) \"1.0\", \"2.0\"; expected a header row"));
+        assert!(msg("x_m,name\n").contains("missing column y_m"));
+        assert!(msg("x_m,y_m,x_m\n").contains("column x_m appears twice"));
+        assert!(msg("x_m,y_m\n1\n").contains("line 2: expected 2 fields (x_m,y_m), got 1"));
+        assert!(msg("").contains("empty file"));
+        assert!(msg("x_m,y_m\n\"1,2\n").contains("line 2: unterminated quoted field"));
+    }
+
+    #[test]
+    fn table_and_json() {
+        let rows = [Row {
+            name: "p",
+            x_m: 1.0,
+            y_m: -2.5,
+            keep_out_distance_m: f64::INFINITY,
+            keep_in_edge_distance_m: 3.25,
+            max_uncertainty_m: 3.0,
+        }];
+        let mut out = Vec::new();
+        write_table(&rows, &mut out).expect("write");
+        assert_eq!(
+            String::from_utf8_lossy(&out),
+            "name    x_m     y_m  keep_out_distance_m  keep_in_edge_distance_m  max_uncertainty_m\n\
+             p     1.000  -2.500                  inf                    3.250              3.000\n"
+        );
+        let mut out = Vec::new();
+        write_json(&rows, &mut out).expect("write");
+        let v: serde_json::Value = serde_json::from_slice(&out).expect("json");
+        assert_eq!(v[0]["keep_out_distance_m"], serde_json::Value::Null);
+        assert_eq!(v[0]["keep_in_edge_distance_m"], 3.25);
+        assert_eq!(v[0]["name"], "p");
+    }
+}

@@ -1,0 +1,280 @@
+//! Expected outcomes in scenario files (`[[expect]]`), checked by `solsim regress`.
+//!
+//! ```toml
+//! [[expect]]
+//! what = "sol 385 faults NO_PATH after ~14 m at r ≈ 26.9 m"   # printed on failure
+//! strategy = "replay"
+//! sol = 385                        # per-sol checks below need a sol
+//! fault = "NO_PATH"                # or "none"
+//! fault_after_m = [12.0, 16.0]     # closed ranges [low, high]
+//! fault_uncertainty_m = [26.8, 27.0]
+//! distance_m = [240.0, 250.0]
+//! end_uncertainty_m = [32.82, 33.02]
+//! drove = true
+//!
+//! [[expect]]                       # totals of a run
+//! strategy = "onboard"
+//! no_path_faults = [0, 0]
+//! sols_to_goal = [1, 3]
+//! goal_sooner_than = { strategy = "replay", by_at_least_sols = 1 }
+//! covers = { from_sol = 402, distance_m = 1411.0, sols = [6, 6] }
+//! ```
+
+use std::path::Path;
+
+use serde::Deserialize;
+
+use crate::error::ScenarioError;
+use sim::calendar::Calendar;
+use sim::{CampaignOutcome, Strategy};
+
+/// `[[expect]]` as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawExpectation {
+    #[serde(default)]
+    what: String,
+    strategy: String,
+    sol: Option<u32>,
+    fault: Option<String>,
+    fault_after_m: Option<[f64; 2]>,
+    fault_uncertainty_m: Option<[f64; 2]>,
+    distance_m: Option<[f64; 2]>,
+    end_uncertainty_m: Option<[f64; 2]>,
+    drove: Option<bool>,
+    no_path_faults: Option<[u32; 2]>,
+    faults: Option<[u32; 2]>,
+    sols_to_goal: Option<[u32; 2]>,
+    total_distance_m: Option<[f64; 2]>,
+    max_uncertainty_m: Option<[f64; 2]>,
+    goal_sooner_than: Option<RawSooner>,
+    covers: Option<RawCovers>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSooner {
+    strategy: String,
+    by_at_least_sols: u32,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawCovers {
+    from_sol: u32,
+    distance_m: f64,
+    sols: [u32; 2],
+}
+
+/// One check on one quantity of a run.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Check {
+    /// The sol's fault kind (`None` = no fault).
+    Fault(Option<String>),
+    /// A real quantity of the sol or the run within `[lo, hi]`.
+    Range {
+        /// Name of the quantity as printed.
+        quantity: &'static str,
+        /// Bounds.
+        lo: f64,
+        /// Bounds.
+        hi: f64,
+    },
+    /// Whether the sol drove.
+    Drove(bool),
+    /// The goal is reached at least `by` sols sooner than under `than`.
+    Sooner {
+        /// The other strategy.
+        than: Strategy,
+        /// Sols.
+        by: u32,
+    },
+    /// Sols needed to drive `distance_m` from `from_sol`, within `[lo, hi]`.
+    Covers {
+        /// First sol counted.
+        from_sol: u32,
+        /// Metres.
+        distance_m: f64,
+        /// Bounds.
+        lo: u32,
+        /// Bounds.
+        hi: u32,
+    },
+}
+
+/// A validated `[[expect]]` entry.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Expectation {
+    /// Index in the file.
+    pub index: usize,
+    /// Human description.
+    pub what: String,
+    /// Strategy run.
+    pub strategy: Strategy,
+    /// Sol for per-sol checks.
+    pub sol: Option<u32>,
+    /// The checks.
+    pub checks: Vec<Check>,
+}
+
+impl RawExpectation {
+    /// Validate against the scenario's calendar.
+    pub fn resolve(self, path: &Path, index: usize, calendar: &Calendar) -> Result<Expectation, ScenarioError> {
+        let f = |name: &str| format!("expect[{index}].{name}");
+        let names = Strategy::ALL.map(Strategy::name).join(", ");
+        let strategy = Strategy::from_name(&self.strategy).ok_or_else(|| ScenarioError::field(path, f("strategy"), format!("one of {names}"), format!("{:?}", self.strategy)))?;
+        if let Some(sol) = self.sol {
+            if !calendar.sols.iter().any(|s| s.sol == sol) {
+                return Err(ScenarioError::field(path, f("sol"), "a sol of the calendar", sol));
+            }
+        }
+        let mut checks = Vec::new();
+        let per_sol = self.fault.is_some() || self.fault_after_m.is_some() || self.fault_uncertainty_m.is_some() || self.distance_m.is_some() || self.end_uncertainty_m.is_some() || self.drove.is_some();
+        if per_sol && self.sol.is_none() {
+            return Err(ScenarioError::field(path, f("sol"), "a sol number for per-sol checks (fault, distance_m, …)", "nothing"));
+        }
+        if let Some(fault) = self.fault {
+            let kind = match fault.as_str() {
+                "none" => None,
+                "NO_PATH" | "KEEP_OUT" | "KEEP_IN" => Some(fault.clone()),
+                other => return Err(ScenarioError::field(path, f("fault"), "\"NO_PATH\", \"KEEP_OUT\", \"KEEP_IN\" or \"none\"", format!("{other:?}"))),
+            };
+            checks.push(Check::Fault(kind));
+        }
+        let ranges: [(&'static str, Option<[f64; 2]>); 6] = [
+            ("fault_after_m", self.fault_after_m),
+            ("fault_uncertainty_m", self.fault_uncertainty_m),
+            ("distance_m", self.distance_m),
+            ("end_uncertainty_m", self.end_uncertainty_m),
+            ("total_distance_m", self.total_distance_m),
+            ("max_uncertainty_m", self.max_uncertainty_m),
+        ];
+        let int_ranges: [(&'static str, Option<[u32; 2]>); 3] =
+            [("no_path_faults", self.no_path_faults), ("faults", self.faults), ("sols_to_goal", self.sols_to_goal)];
+        for (quantity, r) in ranges.into_iter().chain(int_ranges.into_iter().map(|(q, r)| (q, r.map(|[a, b]| [f64::from(a), f64::from(b)])))) {
+            if let Some([lo, hi]) = r {
+                if !(lo.is_finite() && hi.is_finite() && lo <= hi) {
+                    return Err(ScenarioError::field(path, f(quantity), "a range [low, high] with low ≤ high", format!("[{lo}, {hi}]")));
+                }
+                checks.push(Check::Range { quantity, lo, hi });
+            }
+        }
+        if let Some(d) = self.drove {
+            checks.push(Check::Drove(d));
+        }
+        if let Some(s) = self.goal_sooner_than {
+            let than = Strategy::from_name(&s.strategy).ok_or_else(|| ScenarioError::field(path, f("goal_sooner_than.strategy"), format!("one of {names}"), format!("{:?}", s.strategy)))?;
+            checks.push(Check::Sooner { than, by: s.by_at_least_sols });
+        }
+        if let Some(cv) = self.covers {
+            if !(cv.distance_m.is_finite() && cv.distance_m > 0.0) {
+                return Err(ScenarioError::field(path, f("covers.distance_m"), "a positive number of metres", cv.distance_m));
+            }
+            checks.push(Check::Covers { from_sol: cv.from_sol, distance_m: cv.distance_m, lo: cv.sols[0], hi: cv.sols[1] });
+        }
+        if checks.is_empty() {
+            return Err(ScenarioError::field(path, f("(checks)"), "at least one check (fault, distance_m, sols_to_goal, …)", "none"));
+        }
+        Ok(Expectation { index, what: self.what, strategy, sol: self.sol, checks })
+    }
+}
+
+/// One failed check.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Mismatch {
+    /// What was checked, e.g. `replay sol 385 fault_after_m`.
+    pub check: String,
+    /// What the file expects.
+    pub expected: String,
+    /// What the run gave.
+    pub got: String,
+}
+
+fn fmt_opt(v: Option<f64>) -> String {
+    v.map_or_else(|| "nothing".into(), |v| format!("{v:.3}"))
+}
+
+impl Expectation {
+    /// The strategies this expectation needs run.
+    #[must_use]
+    pub fn strategies(&self) -> Vec<Strategy> {
+        let mut v = vec![self.strategy];
+        for c in &self.checks {
+            if let Check::Sooner { than, .. } = c {
+                v.push(*than);
+            }
+        }
+        v
+    }
+
+    /// Check against the runs (`outcome(strategy)` gives each strategy's run).
+    pub fn check<'a>(&self, outcome: impl Fn(Strategy) -> &'a CampaignOutcome) -> Vec<Mismatch> {
+        let run = outcome(self.strategy);
+        let rec = self.sol.and_then(|s| run.sol(s));
+        let label = |q: &str| match self.sol {
+            Some(s) => format!("{} sol {s} {q}", self.strategy.name()),
+            None => format!("{} {q}", self.strategy.name()),
+        };
+        let mut out = Vec::new();
+        for c in &self.checks {
+            match c {
+                Check::Fault(kind) => {
+                    let got = rec.and_then(|r| r.fault.as_ref()).map(|f| f.kind.name().to_string());
+                    if got != *kind {
+                        out.push(Mismatch { check: label("fault"), expected: kind.clone().unwrap_or("none".into()), got: got.unwrap_or("none".into()) });
+                    }
+                }
+                Check::Range { quantity, lo, hi } => {
+                    let got: Option<f64> = match *quantity {
+                        "fault_after_m" => rec.and_then(|r| r.fault.as_ref()).map(|f| f.after_m),
+                        "fault_uncertainty_m" => rec.and_then(|r| r.fault.as_ref()).map(|f| f.uncertainty_m),
+                        "distance_m" => rec.map(|r| r.distance_m),
+                        "end_uncertainty_m" => rec.map(|r| r.end_uncertainty_m),
+                        "total_distance_m" => Some(run.totals.distance_m),
+                        "max_uncertainty_m" => Some(run.totals.max_uncertainty_m),
+                        "no_path_faults" => Some(f64::from(run.totals.no_path_faults)),
+                        "faults" => Some(f64::from(run.totals.faults)),
+                        "sols_to_goal" => run.totals.sols_to_goal.map(f64::from),
+                        _ => None,
+                    };
+                    if !got.is_some_and(|g| g >= *lo - 1e-9 && g <= *hi + 1e-9) {
+                        out.push(Mismatch { check: label(quantity), expected: format!("[{lo}, {hi}]"), got: fmt_opt(got) });
+                    }
+                }
+                Check::Drove(d) => {
+                    let got = rec.map(|r| r.drove);
+                    if got != Some(*d) {
+                        out.push(Mismatch { check: label("drove"), expected: d.to_string(), got: got.map_or("nothing".into(), |g| g.to_string()) });
+                    }
+                }
+                Check::Sooner { than, by } => {
+                    let mine = run.totals.sols_to_goal;
+                    let theirs = outcome(*than).totals.sols_to_goal;
+                    let ok = match (mine, theirs) {
+                        (Some(m), Some(t)) => m + by <= t,
+                        (Some(_), None) => true,
+                        _ => false,
+                    };
+                    if !ok {
+                        out.push(Mismatch {
+                            check: label(&format!("sols_to_goal vs {}", than.name())),
+                            expected: format!("at least {by} fewer than {}", theirs.map_or("never".into(), |t| t.to_string())),
+                            got: mine.map_or("goal not reached".into(), |m| m.to_string()),
+                        });
+                    }
+                }
+                Check::Covers { from_sol, distance_m, lo, hi } => {
+                    let got = run.sols_to_cover(*from_sol, *distance_m);
+                    if !got.is_some_and(|g| g >= *lo && g <= *hi) {
+                        out.push(Mismatch {
+                            check: label(&format!("sols to cover {distance_m} m from sol {from_sol}")),
+                            expected: format!("[{lo}, {hi}]"),
+                            got: got.map_or("never".into(), |g| g.to_string()),
+                        });
+                    }
+                }
+            }
+        }
+        out
+    }
+}

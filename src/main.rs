@@ -1,0 +1,234 @@
+//! `solsim` — multi-sol Mars rover mission-operations simulator (command line).
+//!
+//! Exit codes: 0 success; 1 `regress` found a mismatch; 2 bad input (a scenario, map, zones or
+//! points file that cannot be used — the message names the file and the field).
+
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::Context as _;
+use clap::{Args, Parser, Subcommand};
+
+use solsim::report;
+use solsim::scenario::Scenario;
+use solsim::{cmd_map, regress};
+use sim::{CampaignOutcome, Strategy, campaign};
+
+/// Simulate multi-sol Mars rover drives: position uncertainty, grown keep-out zones, AutoNav
+/// NO_PATH faults, and how operations strategies (ground-in-the-loop, onboard global
+/// localization, opportunistic extension drives) change the outcome.
+#[derive(Parser)]
+#[command(name = "solsim", version, propagate_version = true, max_term_width = 100)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run a scenario under every strategy and print them side by side (the main job).
+    ///
+    /// Columns: sols to reach the end of the route, drive sols, metres driven, metres per drive
+    /// sol, NO_PATH faults, all faults, largest uncertainty radius, onboard localizations
+    /// applied/rejected, ground localizations. Per-strategy JSON, CSV and GeoJSON files go to
+    /// --out (default solsim-out/<scenario name>/).
+    Compare(CompareArgs),
+    /// Run a scenario under one strategy and print the sol-by-sol table (or JSON).
+    Run(RunArgs),
+    /// Replay the historic record of a scenario (same as `run --strategy replay`).
+    Replay(ReplayArgs),
+    /// Run every scenario's [[expect]] entries in a directory; exit 1 and print a diff on any
+    /// mismatch.
+    Regress(RegressArgs),
+    /// Check a scenario (file, maps, zones, route) without running it; print the route's
+    /// passage clearance per leg.
+    Validate(ValidateArgs),
+    /// Keep-in / keep-out zone queries.
+    #[command(subcommand)]
+    Zones(ZonesCommand),
+    /// Map tools.
+    #[command(subcommand)]
+    Map(MapCommand),
+}
+
+#[derive(Subcommand)]
+enum ZonesCommand {
+    /// For each point: distance to the nearest keep-out, distance to the keep-in edge, and
+    /// max_uncertainty_m — the largest uncertainty radius at which the point stays drivable.
+    Check(ValidateArgs),
+}
+
+#[derive(Subcommand)]
+enum MapCommand {
+    /// Generate a procedural map (appearance, DEM, terrain class GeoTIFFs) from a recipe TOML.
+    Generate(cmd_map::GenerateArgs),
+}
+
+#[derive(Args)]
+struct OutputArgs {
+    /// Print JSON on standard output instead of the table.
+    #[arg(long)]
+    json: bool,
+    /// Directory for the JSON, per-sol CSV and GeoJSON files [default: solsim-out/<scenario name>]
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// Do not write output files.
+    #[arg(long)]
+    no_files: bool,
+}
+
+#[derive(Args)]
+struct CompareArgs {
+    /// Scenario file (TOML).
+    scenario: PathBuf,
+    #[command(flatten)]
+    output: OutputArgs,
+}
+
+#[derive(Args)]
+struct RunArgs {
+    /// Scenario file (TOML).
+    scenario: PathBuf,
+    /// Strategy: replay, ground, onboard, extension or extension+onboard.
+    #[arg(long, short, default_value = "ground")]
+    strategy: String,
+    #[command(flatten)]
+    output: OutputArgs,
+}
+
+#[derive(Args)]
+struct ReplayArgs {
+    /// Scenario file (TOML) with historic per-sol distances.
+    scenario: PathBuf,
+    #[command(flatten)]
+    output: OutputArgs,
+}
+
+#[derive(Args)]
+struct RegressArgs {
+    /// Directory of scenario files (every *.toml in it).
+    dir: PathBuf,
+    /// Also write a JUnit XML report here (for CI).
+    #[arg(long, value_name = "FILE")]
+    junit: Option<PathBuf>,
+}
+
+#[derive(Args)]
+struct ValidateArgs {
+    /// Scenario file (TOML).
+    scenario: PathBuf,
+}
+
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match dispatch(cli) {
+        Ok(code) => code,
+        Err(e) => {
+            // One line: the message chain, outermost first.
+            let msg: Vec<String> = e.chain().map(|c| c.to_string()).collect();
+            let _ = writeln!(std::io::stderr(), "error: {}", msg.join(": "));
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
+    let stdout = &mut std::io::stdout().lock();
+    match cli.command {
+        Command::Compare(a) => {
+            let scenario = Scenario::load(&a.scenario)?;
+            let strategies = scenario.strategies();
+            let runs = regress::run_strategies(&scenario, &strategies);
+            let outcomes: Vec<CampaignOutcome> = strategies.iter().filter_map(|s| runs.get(s).cloned()).collect();
+            let legs = campaign::leg_clearances(&scenario.campaign);
+            if a.output.json {
+                let docs: Vec<_> = outcomes.iter().map(|o| report::run_json(&scenario, o, &legs)).collect();
+                write!(stdout, "{}", report::pretty(&serde_json::Value::Array(docs)))?;
+            } else {
+                writeln!(stdout, "{} — {}\n", scenario.name, scenario.description.trim())?;
+                write!(stdout, "{}", report::compare_table(&outcomes))?;
+            }
+            write_files(&a.output, &scenario, &outcomes, &legs, stdout)?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Run(a) => run_one(&a.scenario, &a.strategy, &a.output, stdout),
+        Command::Replay(a) => run_one(&a.scenario, "replay", &a.output, stdout),
+        Command::Regress(a) => {
+            let files = regress::scenario_files(&a.dir).with_context(|| format!("{}: cannot list scenario files", a.dir.display()))?;
+            if files.is_empty() {
+                anyhow::bail!("{}: no scenario files (*.toml) found", a.dir.display());
+            }
+            let mut results = Vec::new();
+            for f in &files {
+                results.extend(regress::check_scenario(f)?);
+            }
+            write!(stdout, "{}", regress::text_report(&results))?;
+            if let Some(path) = &a.junit {
+                report::write_atomic(path, regress::junit(&results).as_bytes()).with_context(|| format!("{}: cannot write the JUnit report", path.display()))?;
+            }
+            let failed = results.iter().any(|r| !r.mismatches.is_empty());
+            Ok(if failed { ExitCode::from(1) } else { ExitCode::SUCCESS })
+        }
+        Command::Validate(a) => {
+            let s = Scenario::load(&a.scenario)?;
+            let c = &s.campaign;
+            let route_m: f64 = c.route.windows(2).map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1])).sum();
+            writeln!(stdout, "{}: ok — {} ({} sols {}..{}, {} waypoints, {:.1} m of route, {} expectations)", a.scenario.display(), s.name, c.calendar.sols.len(), c.calendar.sols[0].sol, c.calendar.sols[c.calendar.sols.len() - 1].sol, c.route.len(), route_m, s.expectations.len())?;
+            writeln!(stdout, "grid: {} × {} cells of {} m", c.grid.width, c.grid.height, c.grid.geo.resolution_m_per_px)?;
+            writeln!(stdout, "passage clearance per route leg (the uncertainty radius at which the leg closes):")?;
+            for l in campaign::leg_clearances(c) {
+                let p = c.route[l.to_waypoint];
+                match l.clearance_m {
+                    Some(r) => writeln!(stdout, "  leg to waypoint {:>2} ({:.1}, {:.1}): closes at r = {r:.2} m", l.to_waypoint, p[0], p[1])?,
+                    None => writeln!(stdout, "  leg to waypoint {:>2} ({:.1}, {:.1}): no path even at r = 0", l.to_waypoint, p[0], p[1])?,
+                }
+            }
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Zones(ZonesCommand::Check(a)) => {
+            let _ = a;
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Map(MapCommand::Generate(a)) => {
+            cmd_map::generate(&a, stdout)?;
+            Ok(ExitCode::SUCCESS)
+        }
+    }
+}
+
+fn run_one(path: &Path, strategy: &str, output: &OutputArgs, stdout: &mut dyn std::io::Write) -> anyhow::Result<ExitCode> {
+    let Some(strategy) = Strategy::from_name(strategy) else {
+        let names: Vec<&str> = Strategy::ALL.iter().map(|s| s.name()).collect();
+        anyhow::bail!("--strategy: expected one of {}, got {strategy:?}", names.join(", "));
+    };
+    let scenario = Scenario::load(path)?;
+    if strategy == Strategy::Replay && !scenario.has_history {
+        anyhow::bail!("{}: sols[*].historic_distance_m: expected historic distances for a replay, got none", path.display());
+    }
+    let legs = campaign::leg_clearances(&scenario.campaign);
+    let outcome = campaign::run_campaign(&scenario.campaign, strategy, &legs);
+    if output.json {
+        write!(stdout, "{}", report::pretty(&report::run_json(&scenario, &outcome, &legs)))?;
+    } else {
+        write!(stdout, "{}", report::sol_table(&outcome))?;
+    }
+    write_files(output, &scenario, std::slice::from_ref(&outcome), &legs, stdout)?;
+    Ok(ExitCode::SUCCESS)
+}
+
+fn write_files(output: &OutputArgs, scenario: &Scenario, outcomes: &[CampaignOutcome], legs: &[sim::outcome::LegClearance], stdout: &mut dyn std::io::Write) -> anyhow::Result<()> {
+    if output.no_files {
+        return Ok(());
+    }
+    let dir = output.out.clone().unwrap_or_else(|| Path::new("solsim-out").join(&scenario.name));
+    let mut written = Vec::new();
+    for o in outcomes {
+        written.extend(report::write_run_files(&dir, scenario, o, legs).with_context(|| format!("{}: cannot write outputs", dir.display()))?);
+    }
+    if !output.json {
+        writeln!(stdout, "\nwrote {} files to {}/ (JSON, per-sol CSV, GeoJSON per strategy)", written.len(), dir.display())?;
+    }
+    Ok(())
+}

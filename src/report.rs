@@ -1,0 +1,254 @@
+//! Output files and tables: JSON, per-sol CSV, GeoJSON for MMGIS/QGIS, and the terminal tables.
+//!
+//! Every file is written atomically (a temporary file in the same folder, then a rename), so a
+//! crash or a full disk never leaves half an output behind.
+
+use std::fmt::Write as _;
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+
+use serde_json::{Value, json};
+
+use crate::scenario::Scenario;
+use sim::CampaignOutcome;
+use sim::outcome::LegClearance;
+
+/// Provenance written into every JSON output.
+#[must_use]
+pub fn provenance(scenario: &Scenario) -> Value {
+    json!({
+        "scenario": scenario.name,
+        "scenario_file": scenario.path.display().to_string(),
+        "scenario_sha256": scenario.sha256,
+        "seed": scenario.campaign.seed,
+        "solsim_version": env!("CARGO_PKG_VERSION"),
+    })
+}
+
+/// The JSON document of one run.
+#[must_use]
+pub fn run_json(scenario: &Scenario, outcome: &CampaignOutcome, legs: &[LegClearance]) -> Value {
+    json!({
+        "provenance": provenance(scenario),
+        "strategy": outcome.strategy,
+        "seed": outcome.seed,
+        "sols": outcome.sols,
+        "totals": outcome.totals,
+        "route_legs": legs,
+    })
+}
+
+/// Write `bytes` to `path` atomically.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    std::fs::create_dir_all(dir)?;
+    let file_name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| "out".into());
+    let tmp = dir.join(format!(".{file_name}.tmp-{}", std::process::id()));
+    let result = (|| {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}
+
+/// Per-sol CSV of one run.
+#[must_use]
+pub fn sols_csv(outcome: &CampaignOutcome) -> String {
+    let mut s = String::from(
+        "strategy,sol,plan_uplink_sol,drove,skip_reason,distance_m,d_vo_m,d_novo_m,drive_time_s,start_uncertainty_m,end_uncertainty_m,fault,fault_after_m,fault_uncertainty_m,passage_clearance_m,ground_localized,onboard_localization,end_x_m,end_y_m,true_x_m,true_y_m,truth_error_m,truth_inside_disc,reached_goal\n",
+    );
+    for r in &outcome.sols {
+        let onboard = match &r.onboard_localization {
+            None => "",
+            Some(l) if l.applied => "applied",
+            Some(_) => "rejected",
+        };
+        let _ = writeln!(
+            s,
+            "{},{},{},{},{},{:.3},{:.3},{:.3},{:.0},{:.3},{:.3},{},{},{},{},{},{},{:.3},{:.3},{:.3},{:.3},{:.3},{},{}",
+            outcome.strategy,
+            r.sol,
+            r.plan_uplink_sol,
+            r.drove,
+            r.skip_reason.as_deref().map(csv_quote).unwrap_or_default(),
+            r.distance_m,
+            r.d_vo_m,
+            r.d_novo_m,
+            r.drive_time_s,
+            r.start_uncertainty_m,
+            r.end_uncertainty_m,
+            r.fault.as_ref().map_or("", |f| f.kind.name()),
+            r.fault.as_ref().map_or(String::new(), |f| format!("{:.3}", f.after_m)),
+            r.fault.as_ref().map_or(String::new(), |f| format!("{:.3}", f.uncertainty_m)),
+            r.passage_clearance_m.map_or(String::new(), |c| format!("{c:.3}")),
+            r.ground_localization.is_some(),
+            onboard,
+            r.end_position_m[0],
+            r.end_position_m[1],
+            r.end_true_position_m[0],
+            r.end_true_position_m[1],
+            r.truth_error_m,
+            r.truth_inside_disc,
+            r.reached_goal,
+        );
+    }
+    s
+}
+
+fn csv_quote(s: &str) -> String {
+    if s.contains([',', '"', '\n']) { format!("\"{}\"", s.replace('"', "\"\"")) } else { s.to_string() }
+}
+
+/// GeoJSON of one run: the driven path per sol (LineString, estimated positions) and the sol-end
+/// positions (Point) with the uncertainty as MMGIS-style ellipse properties
+/// (`uncertainty_semi_major_m`, `uncertainty_semi_minor_m`, `uncertainty_angle_deg`; a disc, so
+/// both axes equal the radius and the angle is 0).
+#[must_use]
+pub fn run_geojson(scenario: &Scenario, outcome: &CampaignOutcome) -> Value {
+    let mut features = Vec::new();
+    for r in &outcome.sols {
+        if r.path_m.len() >= 2 {
+            features.push(json!({
+                "type": "Feature",
+                "geometry": { "type": "LineString", "coordinates": r.path_m },
+                "properties": {
+                    "kind": "drive",
+                    "strategy": outcome.strategy,
+                    "sol": r.sol,
+                    "distance_m": r.distance_m,
+                    "fault": r.fault.as_ref().map(|f| f.kind.name()),
+                },
+            }));
+        }
+        if r.drove {
+            features.push(json!({
+                "type": "Feature",
+                "geometry": { "type": "Point", "coordinates": r.path_m.last().copied().unwrap_or(r.end_position_m) },
+                "properties": {
+                    "kind": "sol_end",
+                    "strategy": outcome.strategy,
+                    "sol": r.sol,
+                    "uncertainty_m": r.end_uncertainty_m,
+                    "uncertainty_semi_major_m": r.end_uncertainty_m,
+                    "uncertainty_semi_minor_m": r.end_uncertainty_m,
+                    "uncertainty_angle_deg": 0.0,
+                    "true_x_m": r.end_true_position_m[0],
+                    "true_y_m": r.end_true_position_m[1],
+                    "fault": r.fault.as_ref().map(|f| f.kind.name()),
+                },
+            }));
+        }
+    }
+    json!({
+        "type": "FeatureCollection",
+        "name": format!("{}.{}", scenario.name, outcome.strategy),
+        "crs_note": "map metres: x easting, y northing, same frame as the scenario's zones",
+        "features": features,
+    })
+}
+
+/// Write the JSON, CSV and GeoJSON of one run into `dir`; returns the paths written.
+pub fn write_run_files(dir: &Path, scenario: &Scenario, outcome: &CampaignOutcome, legs: &[LegClearance]) -> std::io::Result<Vec<PathBuf>> {
+    let stem = format!("{}.{}", scenario.name, outcome.strategy);
+    let files = [
+        (dir.join(format!("{stem}.json")), pretty(&run_json(scenario, outcome, legs))),
+        (dir.join(format!("{stem}.sols.csv")), sols_csv(outcome)),
+        (dir.join(format!("{stem}.geojson")), pretty(&run_geojson(scenario, outcome))),
+    ];
+    for (path, text) in &files {
+        write_atomic(path, text.as_bytes())?;
+    }
+    Ok(files.into_iter().map(|(p, _)| p).collect())
+}
+
+/// Pretty JSON with a trailing newline.
+#[must_use]
+pub fn pretty(v: &Value) -> String {
+    let mut s = serde_json::to_string_pretty(v).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"));
+    s.push('\n');
+    s
+}
+
+/// The per-sol table of one run.
+#[must_use]
+pub fn sol_table(outcome: &CampaignOutcome) -> String {
+    let mut s = format!("strategy: {}\n", outcome.strategy);
+    let _ = writeln!(s, "{:>5}  {:>10}  {:>11}  {:>11}  {:>11}  {:>12}  {:<28}  note", "sol", "distance_m", "start_r_m", "end_r_m", "d_novo_m", "passage_m", "fault");
+    for r in &outcome.sols {
+        let fault = r.fault.as_ref().map_or(String::new(), |f| format!("{} after {:.1} m at r={:.2} m", f.kind.name(), f.after_m, f.uncertainty_m));
+        let mut note = r.skip_reason.clone().map(|s| format!("skipped: {s}")).unwrap_or_default();
+        if r.ground_localization.is_some() {
+            note = format!("ground-localized; {note}");
+        }
+        if let Some(l) = &r.onboard_localization {
+            note.push_str(&if l.applied { format!("onboard loc → r={:.2} m", l.uncertainty_after_m) } else { format!("onboard loc rejected ({})", l.reason.as_deref().unwrap_or("")) });
+        }
+        if r.reached_goal {
+            note.push_str(" goal reached");
+        }
+        let _ = writeln!(
+            s,
+            "{:>5}  {:>10.2}  {:>11.2}  {:>11.2}  {:>11.2}  {:>12}  {:<28}  {}",
+            r.sol,
+            r.distance_m,
+            r.start_uncertainty_m,
+            r.end_uncertainty_m,
+            r.d_novo_m,
+            r.passage_clearance_m.map_or("-".into(), |c| format!("{c:.2}")),
+            fault,
+            note.trim()
+        );
+    }
+    let t = &outcome.totals;
+    let _ = writeln!(
+        s,
+        "totals: {:.1} m in {} drive sols of {}; sols to goal {}; {} NO_PATH / {} faults; max r {:.2} m; localizations: {} ground, {} onboard applied, {} rejected; truth outside disc on {} sols",
+        t.distance_m,
+        t.drive_sols,
+        t.sols,
+        t.sols_to_goal.map_or("not reached".into(), |n| n.to_string()),
+        t.no_path_faults,
+        t.faults,
+        t.max_uncertainty_m,
+        t.ground_localizations,
+        t.onboard_localizations_applied,
+        t.onboard_localizations_rejected,
+        t.truth_outside_disc
+    );
+    s
+}
+
+/// The side-by-side table of `solsim compare`.
+#[must_use]
+pub fn compare_table(outcomes: &[CampaignOutcome]) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "{:<18}  {:>11}  {:>10}  {:>10}  {:>11}  {:>7}  {:>7}  {:>9}  {:>16}  {:>12}",
+        "strategy", "sols_to_goal", "drive_sols", "distance_m", "m_per_drive", "NO_PATH", "faults", "max_r_m", "onboard_loc a/r", "ground_loc"
+    );
+    for o in outcomes {
+        let t = &o.totals;
+        let per = if t.drive_sols > 0 { t.distance_m / f64::from(t.drive_sols) } else { 0.0 };
+        let _ = writeln!(
+            s,
+            "{:<18}  {:>11}  {:>10}  {:>10.1}  {:>11.1}  {:>7}  {:>7}  {:>9.2}  {:>16}  {:>12}",
+            o.strategy,
+            t.sols_to_goal.map_or("-".into(), |n| n.to_string()),
+            t.drive_sols,
+            t.distance_m,
+            per,
+            t.no_path_faults,
+            t.faults,
+            t.max_uncertainty_m,
+            format!("{}/{}", t.onboard_localizations_applied, t.onboard_localizations_rejected),
+            t.ground_localizations
+        );
+    }
+    s
+}
