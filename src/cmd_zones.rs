@@ -74,12 +74,26 @@ pub fn run(args: &ZonesCheckArgs, out: &mut dyn Write) -> anyhow::Result<()> {
             max_uncertainty_m: c.max_uncertainty_m,
         })
         .collect();
-    if args.json { write_json(&rows, out) } else { write_table(&rows, out) }.context("writing the zones check output")
+    match if args.json {
+        write_json(&rows, out)
+    } else {
+        write_table(&rows, out)
+    } {
+        // A closed pipe (`| head`) means the reader has seen enough, not that the check failed.
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        written => written.context("writing the zones check output"),
+    }
 }
 
 /// Column names, in output order.
-const COLUMNS: [&str; 6] =
-    ["name", "x_m", "y_m", "keep_out_distance_m", "keep_in_edge_distance_m", "max_uncertainty_m"];
+const COLUMNS: [&str; 6] = [
+    "name",
+    "x_m",
+    "y_m",
+    "keep_out_distance_m",
+    "keep_in_edge_distance_m",
+    "max_uncertainty_m",
+];
 
 /// One output row.
 struct Row<'a> {
@@ -93,7 +107,13 @@ struct Row<'a> {
 
 impl Row<'_> {
     fn numbers(&self) -> [f64; 5] {
-        [self.x_m, self.y_m, self.keep_out_distance_m, self.keep_in_edge_distance_m, self.max_uncertainty_m]
+        [
+            self.x_m,
+            self.y_m,
+            self.keep_out_distance_m,
+            self.keep_in_edge_distance_m,
+            self.max_uncertainty_m,
+        ]
     }
 }
 
@@ -104,7 +124,14 @@ fn write_table(rows: &[Row<'_>], out: &mut dyn Write) -> std::io::Result<()> {
         .iter()
         .map(|r| {
             let n = r.numbers().map(|v| format!("{v:.3}"));
-            [r.name.to_owned(), n[0].clone(), n[1].clone(), n[2].clone(), n[3].clone(), n[4].clone()]
+            [
+                r.name.to_owned(),
+                n[0].clone(),
+                n[1].clone(),
+                n[2].clone(),
+                n[3].clone(),
+                n[4].clone(),
+            ]
         })
         .collect();
     let mut widths = COLUMNS.map(str::len);
@@ -127,18 +154,28 @@ fn write_table(rows: &[Row<'_>], out: &mut dyn Write) -> std::io::Result<()> {
     Ok(())
 }
 
-/// JSON array of objects keyed like the table's columns; infinite distances become `null`.
+/// JSON array of objects keyed like the table's columns (in that order); infinite distances
+/// become `null`.
 fn write_json(rows: &[Row<'_>], out: &mut dyn Write) -> std::io::Result<()> {
-    let finite = |v: f64| if v.is_finite() { serde_json::json!(v) } else { serde_json::Value::Null };
-    let array: Vec<serde_json::Value> = rows
+    #[derive(serde::Serialize)]
+    struct JsonRow<'a> {
+        name: &'a str,
+        x_m: f64,
+        y_m: f64,
+        keep_out_distance_m: Option<f64>,
+        keep_in_edge_distance_m: Option<f64>,
+        max_uncertainty_m: Option<f64>,
+    }
+    let finite = |v: f64| v.is_finite().then_some(v);
+    let array: Vec<JsonRow<'_>> = rows
         .iter()
-        .map(|r| {
-            let mut object = serde_json::Map::new();
-            object.insert(COLUMNS[0].to_owned(), serde_json::json!(r.name));
-            for (key, value) in COLUMNS[1..].iter().zip(r.numbers()) {
-                object.insert((*key).to_owned(), finite(value));
-            }
-            serde_json::Value::Object(object)
+        .map(|r| JsonRow {
+            name: r.name,
+            x_m: r.x_m,
+            y_m: r.y_m,
+            keep_out_distance_m: finite(r.keep_out_distance_m),
+            keep_in_edge_distance_m: finite(r.keep_in_edge_distance_m),
+            max_uncertainty_m: finite(r.max_uncertainty_m),
         })
         .collect();
     serde_json::to_writer_pretty(&mut *out, &array)?;
@@ -165,9 +202,15 @@ fn read_points(path: &Path) -> anyhow::Result<Vec<NamedPoint>> {
 fn parse_points(text: &str, path: &Path) -> anyhow::Result<Vec<NamedPoint>> {
     let file = path.display();
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l)).filter(|(_, l)| !l.trim().is_empty());
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| (i + 1, l))
+        .filter(|(_, l)| !l.trim().is_empty());
     let Some((header_line, header)) = lines.next() else {
-        bail!("{file}: empty file; expected a header row naming the columns x_m, y_m and optionally name");
+        bail!(
+            "{file}: empty file; expected a header row naming the columns x_m, y_m and optionally name"
+        );
     };
     let header = split_fields(header).map_err(|e| anyhow!("{file}: line {header_line}: {e}"))?;
     let mut unknown = Vec::new();
@@ -194,7 +237,9 @@ fn parse_points(text: &str, path: &Path) -> anyhow::Result<Vec<NamedPoint>> {
     }
     let (Some(x_col), Some(y_col)) = (x_col, y_col) else {
         let missing = if x_col.is_none() { "x_m" } else { "y_m" };
-        bail!("{file}: line {header_line}: missing column {missing}; expected x_m, y_m and optionally name");
+        bail!(
+            "{file}: line {header_line}: missing column {missing}; expected x_m, y_m and optionally name"
+        );
     };
     let mut points = Vec::new();
     for (line, text) in lines {
@@ -211,7 +256,10 @@ fn parse_points(text: &str, path: &Path) -> anyhow::Result<Vec<NamedPoint>> {
             let raw = &fields[col];
             match raw.parse::<f64>() {
                 Ok(v) if v.is_finite() => Ok(v),
-                _ => bail!("{file}: line {line}, column {}: expected a finite number of metres, got {raw:?}", header[col]),
+                _ => bail!(
+                    "{file}: line {line}, column {}: expected a finite number of metres, got {raw:?}",
+                    header[col]
+                ),
             }
         };
         let xy = [number(x_col)?, number(y_col)?];
@@ -280,8 +328,14 @@ mod tests {
         assert_eq!(
             pts,
             vec![
-                NamedPoint { name: "a, b".into(), xy: [1.0, 2.0] },
-                NamedPoint { name: "point-1".into(), xy: [3.0, 4.0] }
+                NamedPoint {
+                    name: "a, b".into(),
+                    xy: [1.0, 2.0]
+                },
+                NamedPoint {
+                    name: "point-1".into(),
+                    xy: [3.0, 4.0]
+                }
             ]
         );
         assert_eq!(parse("x_m,y_m\n").expect("header only"), vec![]);
@@ -296,7 +350,9 @@ mod tests {
         );
         assert!(msg("x_m,y_m\nNaN,1\n").contains("line 2, column x_m"));
         assert!(msg("x_m,y_m,z_m,foo\n").contains("line 1: unknown column(s) \"z_m\", \"foo\""));
-        assert!(msg("1.0,2.0\n").contains("unknown column(s) \"1.0\", \"2.0\"; expected a header row"));
+        assert!(
+            msg("1.0,2.0\n").contains("unknown column(s) \"1.0\", \"2.0\"; expected a header row")
+        );
         assert!(msg("x_m,name\n").contains("missing column y_m"));
         assert!(msg("x_m,y_m,x_m\n").contains("column x_m appears twice"));
         assert!(msg("x_m,y_m\n1\n").contains("line 2: expected 2 fields (x_m,y_m), got 1"));
@@ -323,6 +379,15 @@ mod tests {
         );
         let mut out = Vec::new();
         write_json(&rows, &mut out).expect("write");
+        let text = String::from_utf8_lossy(&out);
+        let keys: Vec<usize> = COLUMNS
+            .iter()
+            .map(|k| text.find(&format!("\"{k}\"")).unwrap_or(usize::MAX))
+            .collect();
+        assert!(
+            keys.windows(2).all(|w| w[0] < w[1]),
+            "keys in column order: {text}"
+        );
         let v: serde_json::Value = serde_json::from_slice(&out).expect("json");
         assert_eq!(v[0]["keep_out_distance_m"], serde_json::Value::Null);
         assert_eq!(v[0]["keep_in_edge_distance_m"], 3.25);

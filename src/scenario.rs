@@ -135,6 +135,7 @@ struct RawSol {
     historic_planning: Option<String>,
     historic_distance_m: Option<f64>,
     historic_novo_m: Option<f64>,
+    historic_fault: Option<String>,
     #[serde(default)]
     note: String,
 }
@@ -310,16 +311,23 @@ impl Scenario {
                 return Err(ScenarioError::field(path, f("historic_planning"), "only on a sol with an uplink", "a sol without one"));
             }
             let historic = match (s.historic_distance_m, s.historic_novo_m) {
-                (None, None) => None,
+                (None, None) if s.historic_fault.is_none() => None,
                 (Some(dist), novo) => {
                     let dist = c.non_negative(&f("historic_distance_m"), dist, "metres")?;
                     let novo = c.non_negative(&f("historic_novo_m"), novo.unwrap_or(0.0), "metres")?;
                     if novo > dist {
                         return Err(ScenarioError::field(path, f("historic_novo_m"), format!("at most historic_distance_m ({dist} m)"), novo));
                     }
-                    Some(HistoricSol { distance_m: dist, novo_m: novo })
+                    let ended_in_fault = match s.historic_fault.as_deref() {
+                        None => false,
+                        Some("NO_PATH" | "KEEP_OUT" | "KEEP_IN") => true,
+                        Some(other) => return Err(ScenarioError::field(path, f("historic_fault"), "\"NO_PATH\", \"KEEP_OUT\" or \"KEEP_IN\"", format!("{other:?}"))),
+                    };
+                    Some(HistoricSol { distance_m: dist, novo_m: novo, ended_in_fault })
                 }
-                (None, Some(_)) => return Err(ScenarioError::field(path, f("historic_distance_m"), "a distance whenever historic_novo_m is given", "nothing")),
+                (None, _) => {
+                    return Err(ScenarioError::field(path, f("historic_distance_m"), "a distance whenever historic_novo_m or historic_fault is given", "nothing"));
+                }
             };
             has_history |= historic.is_some();
             let downlink_lmst = s.downlink_lmst.as_deref().map(|t| c.lmst(&f("downlink_lmst"), t)).transpose()?;

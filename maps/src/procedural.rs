@@ -34,7 +34,7 @@ use crate::raster::{GeoTransform, Raster};
 use crate::raster_io::MapLayers;
 use crate::terrain::TerrainClass;
 use landforms::Landforms;
-use noise::{Fbm, gradient, sub_seed, white};
+use noise::{Fbm, sub_seed, white};
 
 /// Heights are clamped to this range so the DEM fits 16-bit centimetres above datum 0.
 const HEIGHT_RANGE_M: (f64, f64) = (0.0, 655.0);
@@ -246,20 +246,17 @@ pub fn generate(params: &TerrainParams) -> MapLayers {
     }
     let res = geo.resolution_m_per_px;
 
-    // 1. DEM and forced sand.
+    // 1. DEM and forced sand. Pixel-centre x is the same on every row.
     let landforms = Landforms::new(&p);
+    let xs: Vec<f64> = (0..w).map(|col| geo.center_of(col, 0).0).collect();
+    let y_of = |row: usize| geo.center_of(0, row).1;
     let mut dem = vec![0.0f32; w * h];
     let mut forced = vec![false; w * h];
     dem.par_chunks_mut(w)
         .zip(forced.par_chunks_mut(w))
         .enumerate()
         .for_each(|(row, (dem_row, forced_row))| {
-            for (col, (z, f)) in dem_row.iter_mut().zip(forced_row.iter_mut()).enumerate() {
-                let (x, y) = geo.center_of(col, row);
-                let (height, sand) = landforms.at(x, y, col, row);
-                *z = clamp_height(height) as f32;
-                *f = sand;
-            }
+            landforms.fill_row(row, &xs, y_of(row), clamp_height, dem_row, forced_row);
         });
 
     // 2. Per-pixel class scores and illumination.
@@ -270,6 +267,10 @@ pub fn generate(params: &TerrainParams) -> MapLayers {
     let sun = sun_vector(p.sun_azimuth_deg, p.sun_elevation_deg);
     let mut pixels = vec![PixelScore::default(); w * h];
     pixels.par_chunks_mut(w).enumerate().for_each(|(row, out)| {
+        let y = y_of(row);
+        let (mut sand_row, mut rock_row) = (vec![0.0; w], vec![0.0; w]);
+        sand_noise.row(&xs, y, &mut sand_row);
+        rock_noise.row(&xs, y, &mut rock_row);
         let (north, south) = (row.saturating_sub(1), (row + 1).min(h - 1));
         for (col, px) in out.iter_mut().enumerate() {
             let (west, east) = (col.saturating_sub(1), (col + 1).min(w - 1));
@@ -277,13 +278,10 @@ pub fn generate(params: &TerrainParams) -> MapLayers {
             let dz_dx = (z(east, row) - z(west, row)) / ((east - west).max(1) as f64 * res);
             let dz_dy = (z(col, north) - z(col, south)) / ((south - north).max(1) as f64 * res);
             let grad = (dz_dx * dz_dx + dz_dy * dz_dy).sqrt();
-            let (x, y) = geo.center_of(col, row);
             let above_mean_m = z(col, row) - f64::from(local_mean[row * w + col]);
-            px.sand = (above_mean_m + 3.0 * grad + 1.5 * sand_noise.at(x, y)) as f32;
-            px.rock = (above_mean_m + 5.0 * grad + 1.5 * rock_noise.at(x, y)) as f32;
-            let cos_incidence =
-                (sun[2] - dz_dx * sun[0] - dz_dy * sun[1]) / (1.0 + grad * grad).sqrt();
-            px.light = (AMBIENT + (1.0 - AMBIENT) * cos_incidence.max(0.0) / sun[2]) as f32;
+            px.sand = (above_mean_m + 3.0 * grad + 1.5 * sand_row[col]) as f32;
+            px.rock = (above_mean_m + 5.0 * grad + 1.5 * rock_row[col]) as f32;
+            px.light = light(dz_dx, dz_dy, sun) as f32;
         }
     });
 
@@ -291,8 +289,8 @@ pub fn generate(params: &TerrainParams) -> MapLayers {
     let (sand_below, rock_above) =
         class_thresholds(&pixels, &forced, w, h, p.sand_fraction, p.bedrock_fraction);
     let albedo_noise = Fbm::new(sub_seed(p.seed, SALT_ALBEDO), 40.0, 2);
+    let texture_noise = Fbm::new(sub_seed(p.seed, SALT_TEXTURE), 3.0, 1);
     let grain_seed = sub_seed(p.seed, SALT_GRAIN);
-    let texture_seed = sub_seed(p.seed, SALT_TEXTURE);
     let mut terrain = vec![0u8; w * h];
     let mut appearance = vec![0u8; w * h];
     terrain
@@ -300,6 +298,10 @@ pub fn generate(params: &TerrainParams) -> MapLayers {
         .zip(appearance.par_chunks_mut(w))
         .enumerate()
         .for_each(|(row, (t_row, a_row))| {
+            let y = y_of(row);
+            let (mut mottle_row, mut texture_row) = (vec![0.0; w], vec![0.0; w]);
+            albedo_noise.row(&xs, y, &mut mottle_row);
+            texture_noise.row(&xs, y, &mut texture_row);
             for (col, (t, a)) in t_row.iter_mut().zip(a_row.iter_mut()).enumerate() {
                 let i = row * w + col;
                 let px = &pixels[i];
@@ -316,14 +318,12 @@ pub fn generate(params: &TerrainParams) -> MapLayers {
                     TerrainClass::Soil => (0.80, 7.0),
                     TerrainClass::Bedrock => (1.0, 12.0),
                 };
-                let (x, y) = geo.center_of(col, row);
-                let mottle = 1.0 + 0.08 * albedo_noise.at(x, y);
-                let texture = texture_gray
-                    * (0.6 * white(grain_seed, col as i64, row as i64)
-                        + 0.4 * gradient(texture_seed, x / 3.0, y / 3.0));
+                let mottle = 1.0 + 0.08 * mottle_row[col];
+                let grain = white(grain_seed, col as i64, row as i64);
+                let texture = texture_gray * (0.6 * grain + 0.4 * texture_row[col]);
                 let gray = FLAT_BEDROCK_GRAY * albedo * mottle * f64::from(px.light) + texture;
                 // Adding ½ and truncating rounds without a libm call.
-            *a = (gray.clamp(0.0, 255.0) + 0.5) as u8;
+                *a = (gray.clamp(0.0, 255.0) + 0.5) as u8;
             }
         });
 
@@ -371,6 +371,14 @@ fn clamp_height(z: f64) -> f64 {
 fn sun_vector(azimuth_deg: f64, elevation_deg: f64) -> [f64; 3] {
     let (az, el) = (azimuth_deg.to_radians(), elevation_deg.to_radians());
     [az.sin() * el.cos(), az.cos() * el.cos(), el.sin()]
+}
+
+/// Lambertian shading factor of a surface with slopes `dz_dx` (east) and `dz_dy` (north) under
+/// the unit sun vector `sun`: 1 for flat ground, [`AMBIENT`] for faces turned from the sun.
+fn light(dz_dx: f64, dz_dy: f64, sun: [f64; 3]) -> f64 {
+    let cos_incidence =
+        (sun[2] - dz_dx * sun[0] - dz_dy * sun[1]) / (1.0 + dz_dx * dz_dx + dz_dy * dz_dy).sqrt();
+    AMBIENT + (1.0 - AMBIENT) * cos_incidence.max(0.0) / sun[2]
 }
 
 /// Mean of each pixel's (2r+1)² neighbourhood, clipped at the raster edges.
@@ -464,4 +472,84 @@ fn quantile(values: &mut [f32], q: f64) -> Option<f32> {
     }
     let (_, v, _) = values.select_nth_unstable_by(k, f32::total_cmp);
     Some(*v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn box_mean_matches_brute_force_at_edges_and_inside() {
+        let (w, h) = (13, 7);
+        let data: Vec<f32> = (0..w * h).map(|i| ((i * 37) % 11) as f32 - 3.5).collect();
+        for r in [1, 2, 6, 20] {
+            let fast = box_mean(&data, w, h, r);
+            for row in 0..h {
+                for col in 0..w {
+                    let (mut sum, mut n) = (0.0f64, 0.0f64);
+                    for rr in row.saturating_sub(r)..(row + r + 1).min(h) {
+                        for cc in col.saturating_sub(r)..(col + r + 1).min(w) {
+                            sum += f64::from(data[rr * w + cc]);
+                            n += 1.0;
+                        }
+                    }
+                    let slow = (sum / n) as f32;
+                    assert!(
+                        (fast[row * w + col] - slow).abs() < 1e-5,
+                        "r={r} ({col}, {row})"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn quantile_ends_and_middle() {
+        assert_eq!(quantile(&mut [], 0.5), None);
+        let mut v = [5.0, 1.0, 4.0, 2.0, 3.0];
+        assert_eq!(quantile(&mut v, 0.0), Some(f32::NEG_INFINITY));
+        assert_eq!(quantile(&mut v, 1.0), Some(f32::INFINITY));
+        assert_eq!(quantile(&mut v, 0.4), Some(3.0));
+    }
+
+    #[test]
+    fn slopes_facing_the_sun_are_brighter() {
+        // Sun from the west (azimuth 270°): a face rising to the east looks west, at the sun.
+        let sun = sun_vector(270.0, 35.0);
+        assert!((light(0.0, 0.0, sun) - 1.0).abs() < 1e-12);
+        assert!(light(0.5, 0.0, sun) > 1.2);
+        assert!(light(-0.5, 0.0, sun) < 0.8);
+        assert!(
+            (light(-10.0, 0.0, sun) - AMBIENT).abs() < 1e-12,
+            "faces away get ambient only"
+        );
+        // North-south slopes are symmetric under a western sun.
+        assert!((light(0.0, 0.3, sun) - light(0.0, -0.3, sun)).abs() < 1e-9);
+    }
+
+    #[test]
+    fn heights_clamp_into_the_centimetre_range() {
+        assert_eq!(clamp_height(-5.0), 0.0);
+        assert_eq!(clamp_height(f64::NAN), 0.0);
+        assert_eq!(clamp_height(1e6), 655.0);
+        assert_eq!(clamp_height(123.25), 123.25);
+    }
+
+    #[test]
+    fn sanitized_params_are_finite_and_in_range() {
+        let p = TerrainParams {
+            relief_m: f64::NAN,
+            crater_density_per_km2: -4.0,
+            sun_elevation_deg: 120.0,
+            bedrock_fraction: 7.0,
+            geo: GeoTransform::new(f64::INFINITY, 0.0, 0.0),
+            ..TerrainParams::default()
+        }
+        .sanitized();
+        assert_eq!(p.relief_m, 15.0);
+        assert_eq!(p.crater_density_per_km2, 0.0);
+        assert_eq!(p.sun_elevation_deg, 90.0);
+        assert_eq!(p.bedrock_fraction, 1.0);
+        assert_eq!(p.geo, GeoTransform::new(0.0, 0.0, 1.0));
+    }
 }

@@ -100,7 +100,9 @@ impl fmt::Display for ZoneKind {
 }
 
 /// Names one zone of a [`ZoneSet`]: its position in the file's `features`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize, serde::Deserialize,
+)]
 pub struct ZoneHandle(u32);
 
 impl ZoneHandle {
@@ -182,8 +184,10 @@ impl ZoneSet {
     /// [`ZoneError::Io`] when the file cannot be read, otherwise as
     /// [`ZoneSet::from_geojson_str`].
     pub fn load(path: &Path) -> Result<ZoneSet, ZoneError> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|source| ZoneError::Io { path: path.to_owned(), source })?;
+        let text = std::fs::read_to_string(path).map_err(|error| ZoneError::Io {
+            path: path.to_owned(),
+            error,
+        })?;
         Self::from_geojson_str(&text, path)
     }
 
@@ -195,7 +199,10 @@ impl ZoneSet {
     /// invalid ring.
     pub fn from_geojson_str(text: &str, source: &Path) -> Result<ZoneSet, ZoneError> {
         let records = geojson_reader::read_zones(text, source)?;
-        let mut set = ZoneSet { source: source.to_owned(), ..ZoneSet::default() };
+        let mut set = ZoneSet {
+            source: source.to_owned(),
+            ..ZoneSet::default()
+        };
         for record in records {
             let target = match record.kind {
                 ZoneKind::KeepIn => &mut set.keep_in,
@@ -247,7 +254,10 @@ impl ZoneSet {
     /// Every zone with its handle, in file order.
     pub fn iter(&self) -> impl Iterator<Item = (ZoneHandle, &Zone)> + '_ {
         // `from_geojson_str` rejects more than u32::MAX features.
-        self.zones.iter().enumerate().map(|(i, z)| (ZoneHandle(i as u32), z))
+        self.zones
+            .iter()
+            .enumerate()
+            .map(|(i, z)| (ZoneHandle(i as u32), z))
     }
 
     /// The keep-out zones with their handles.
@@ -334,7 +344,8 @@ impl ZoneSet {
         Clearance {
             keep_out_distance_m,
             keep_in_edge_distance_m,
-            max_uncertainty_m: keep_out_distance_m.min(keep_in_edge_distance_m) - footprint_radius_m,
+            max_uncertainty_m: keep_out_distance_m.min(keep_in_edge_distance_m)
+                - footprint_radius_m,
         }
     }
 
@@ -342,7 +353,10 @@ impl ZoneSet {
     /// depend on the number of threads.
     #[must_use]
     pub fn clearances(&self, points: &[[f64; 2]], footprint_radius_m: f64) -> Vec<Clearance> {
-        points.par_iter().map(|&p| self.clearance(p, footprint_radius_m)).collect()
+        points
+            .par_iter()
+            .map(|&p| self.clearance(p, footprint_radius_m))
+            .collect()
     }
 
     /// Rasterise the zones onto a `width × height` grid placed by `geo` (row 0 north; see
@@ -355,8 +369,15 @@ impl ZoneSet {
     /// # Panics
     /// If `width * height` overflows `usize`.
     #[must_use]
-    pub fn rasterize(&self, geo: GeoTransform, width: usize, height: usize) -> (Vec<bool>, Vec<bool>) {
-        let cells = width.checked_mul(height).unwrap_or_else(|| panic!("raster of {width} x {height} cells is too large"));
+    pub fn rasterize(
+        &self,
+        geo: GeoTransform,
+        width: usize,
+        height: usize,
+    ) -> (Vec<bool>, Vec<bool>) {
+        let cells = width
+            .checked_mul(height)
+            .unwrap_or_else(|| panic!("raster of {width} x {height} cells is too large"));
         let mut keep_out = vec![false; cells];
         rasterization::fill_polygons(&self.keep_out, geo, width, &mut keep_out);
         let keep_in = if self.keep_in.is_empty() {
@@ -409,7 +430,11 @@ mod tests {
     fn non_finite_points_give_nan() {
         let zones = set(&square_feature("keep_in", 0.0, 0.0, 10.0));
         assert!(zones.distance_to_keep_out_m([f64::NAN, 0.0]).is_nan());
-        assert!(zones.distance_to_keep_in_edge_m([0.0, f64::INFINITY]).is_nan());
+        assert!(
+            zones
+                .distance_to_keep_in_edge_m([0.0, f64::INFINITY])
+                .is_nan()
+        );
         assert!(!zones.in_keep_in([f64::NAN, 1.0]));
     }
 
@@ -422,7 +447,10 @@ mod tests {
         ));
         assert_eq!(zones.len(), 2);
         let (h, z) = zones.keep_ins().next().expect("one keep-in");
-        assert_eq!((h.index(), z.name(), z.kind(), z.feature_index()), (1, "zone-1", ZoneKind::KeepIn, 1));
+        assert_eq!(
+            (h.index(), z.name(), z.kind(), z.feature_index()),
+            (1, "zone-1", ZoneKind::KeepIn, 1)
+        );
         assert_eq!(zones.get(h), Some(z));
         assert_eq!(zones.get(ZoneHandle(7)), None);
         assert_eq!(zones.keep_outs().count(), 1);
@@ -444,8 +472,16 @@ mod tests {
         for row in 0..h {
             for col in 0..w {
                 let (x, y) = geo.center_of(col, row);
-                assert_eq!(out[row * w + col], zones.in_keep_out([x, y]), "keep-out at {col},{row}");
-                assert_eq!(inside[row * w + col], zones.in_keep_in([x, y]), "keep-in at {col},{row}");
+                assert_eq!(
+                    out[row * w + col],
+                    zones.in_keep_out([x, y]),
+                    "keep-out at {col},{row}"
+                );
+                assert_eq!(
+                    inside[row * w + col],
+                    zones.in_keep_in([x, y]),
+                    "keep-in at {col},{row}"
+                );
             }
         }
         assert!(out.iter().any(|&c| c) && inside.iter().any(|&c| !c));

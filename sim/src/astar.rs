@@ -16,7 +16,7 @@
 //! Textbook A* (Hart, Nilsson & Raphael 1968) with the octile-distance heuristic
 //! `min_cost × (max(Δr, Δc) + (√2 − 1) · min(Δr, Δc))`. It is consistent when every passable
 //! cell costs at least `min_cost`, so each cell is expanded at most once and the returned path
-//! is optimal. The open set is a binary heap with lazy deletion (an improved cell is pushed
+//! is optimal. The open set is an exact banded priority queue (see `OpenSet`) with lazy deletion (an improved cell is pushed
 //! again; stale entries are skipped when popped).
 //!
 //! Costs `g` are accumulated in `f64`: sums of millions of `f32` costs stay exact to far below
@@ -34,6 +34,9 @@
 //! - P. E. Hart, N. J. Nilsson and B. Raphael, "A Formal Basis for the Heuristic Determination
 //!   of Minimum Cost Paths", *IEEE Transactions on Systems Science and Cybernetics* 4(2) (1968)
 //!   100–107.
+
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
 
 /// √2 − 1, the extra octile cost of a diagonal step over an orthogonal one.
 const SQRT2_MINUS_1: f64 = std::f64::consts::SQRT_2 - 1.0;
@@ -62,113 +65,168 @@ struct CellState {
     stamp: u32,
 }
 
-/// One open-set entry: 12 bytes, so a node's 4 children share one cache line.
-#[derive(Debug, Clone, Copy)]
-#[repr(C, packed(4))]
-struct Open {
-    /// IEEE-754 bits of `f = g + h`; `f ≥ 0`, so the bits order like the value.
-    f_bits: u64,
-    cell: u32,
+/// Open-set key: `(f, tie)` packed into one integer whose order is the pop order.
+///
+/// `f ≥ 0`, so its IEEE-754 bits order like its value. The tie field is `!g` (as `f32` bits,
+/// so larger `g` pops first) then the cell index (lower first). Every key is a deterministic
+/// function of the input, so the pop sequence is too.
+#[inline(always)]
+fn open_key(f: f64, g: f64, cell: u32) -> u128 {
+    let tie = (u64::from(!(g as f32).to_bits()) << 32) | u64::from(cell);
+    (u128::from(f.to_bits()) << 64) | u128::from(tie)
 }
 
-/// The open set: a 4-ary min-heap ordered by `f`, then by smaller `h` (i.e. larger `g` for the
-/// same `f`), then by lower cell index.
+/// The `f` of an open-set key.
+#[inline(always)]
+fn key_f(key: u128) -> f64 {
+    f64::from_bits((key >> 64) as u64)
+}
+
+/// The cell index of an open-set key.
+#[inline(always)]
+fn key_cell(key: u128) -> u32 {
+    key as u32
+}
+
+/// Bands per unit of `f` (per `min_cost`) in the open set.
+const BANDS_PER_UNIT: f64 = 64.0;
+
+/// Band buckets in the open set's circular window (a power of two).
+const WINDOW_BANDS: u64 = 1024;
+
+/// The open set: an exact priority queue for A*'s nearly monotone keys.
 ///
-/// The order is total on distinct cells, so the pop sequence is a function of the input alone.
-/// Ties in `f` are rare with real-valued costs, so a comparison is almost always one integer
-/// comparison; the tie rule recomputes `h` from the cell's position.
-#[derive(Debug, Clone, Default)]
+/// A* with a consistent heuristic pops `f` in non-decreasing order. Keys are grouped in bands
+/// of width `1 / (BANDS_PER_UNIT · min_cost)` in `f`, indexed by the coarse key
+/// `⌊f · scale⌋`, which is monotone in `f`:
+/// - the **current band** is sorted once, in descending order, when it becomes current, so a
+///   pop is `Vec::pop`; keys pushed into it later (or below it: a rounding-level heuristic
+///   inconsistency) go to a small side heap, and a pop takes the smaller of the two fronts;
+/// - later bands within a window of [`WINDOW_BANDS`] are unsorted buckets in a circular array,
+///   so most pushes are appends;
+/// - keys beyond the window wait in an overflow heap and move into their bucket once the window
+///   reaches them (each key at most once).
+///
+/// Every key outside the current band has a larger coarse key, hence a larger `f`, hence a
+/// larger key: each pop returns the exact minimum of the remaining keys, and the search is the
+/// same as with one binary heap, only faster (bands are sorted in cache, pushes are appends).
+/// Cost fields far above `min_cost` only send more keys through the overflow heap.
+#[derive(Debug, Clone)]
 struct OpenSet {
-    entries: Vec<Open>,
-    width: usize,
-    goal_row: usize,
-    goal_col: usize,
+    /// Coarse keys per unit of `f`.
+    scale: f64,
+    /// Coarse key of the current band.
+    current: u64,
+    /// The current band's keys as of when it became current, sorted descending.
+    band: Vec<u128>,
+    /// Keys pushed with a coarse key ≤ `current`.
+    side: BinaryHeap<Reverse<u128>>,
+    /// Bucket `c % WINDOW_BANDS` holds the keys of coarse key `c`, for
+    /// `current < c < current + WINDOW_BANDS`.
+    buckets: Vec<Vec<u128>>,
+    /// Number of keys in `buckets`.
+    bucketed: usize,
+    /// Keys with coarse key ≥ `current + WINDOW_BANDS` when pushed.
+    overflow: BinaryHeap<Reverse<u128>>,
+}
+
+impl Default for OpenSet {
+    fn default() -> Self {
+        Self {
+            scale: 1.0,
+            current: 0,
+            band: Vec::new(),
+            side: BinaryHeap::new(),
+            buckets: vec![Vec::new(); WINDOW_BANDS as usize],
+            bucketed: 0,
+            overflow: BinaryHeap::new(),
+        }
+    }
 }
 
 impl OpenSet {
-    /// Empties the set for a search towards `goal`.
-    fn reset(&mut self, width: usize, goal: usize) {
-        self.entries.clear();
-        self.width = width;
-        self.goal_row = goal / width;
-        self.goal_col = goal % width;
-    }
-
-    /// Whether `a` pops before `b`.
-    #[inline(always)]
-    fn before(&self, a: Open, b: Open) -> bool {
-        let (fa, fb) = (a.f_bits, b.f_bits);
-        if fa != fb {
-            return fa < fb;
-        }
-        let (ca, cb) = (a.cell, b.cell);
-        let (ha, hb) = (self.octile(ca), self.octile(cb));
-        if ha != hb { ha < hb } else { ca < cb }
-    }
-
-    /// Unscaled octile distance from `cell` to the goal (the tie-breaker).
-    #[inline(always)]
-    fn octile(&self, cell: u32) -> f64 {
-        let cell = cell as usize;
-        let dr = (cell / self.width).abs_diff(self.goal_row) as f64;
-        let dc = (cell % self.width).abs_diff(self.goal_col) as f64;
-        dr.max(dc) + SQRT2_MINUS_1 * dr.min(dc)
-    }
-
-    #[inline(always)]
-    fn push(&mut self, item: Open) {
-        let mut i = self.entries.len();
-        self.entries.push(item);
-        while i > 0 {
-            let parent = (i - 1) / 4;
-            let p = self.entries[parent];
-            if !self.before(item, p) {
-                break;
+    /// Empties the set; bands are `1 / scale` wide in `f`.
+    fn reset(&mut self, scale: f64) {
+        self.band.clear();
+        self.side.clear();
+        if self.bucketed > 0 {
+            for b in &mut self.buckets {
+                b.clear();
             }
-            self.entries[i] = p;
-            i = parent;
         }
-        self.entries[i] = item;
+        self.bucketed = 0;
+        self.overflow.clear();
+        self.current = 0;
+        self.scale = scale;
     }
 
     #[inline(always)]
-    fn pop(&mut self) -> Option<Open> {
-        let last = self.entries.pop()?;
-        let Some(&top) = self.entries.first() else {
-            return Some(last);
-        };
-        let n = self.entries.len();
-        let mut i = 0;
+    fn coarse(&self, key: u128) -> u64 {
+        // Saturating float→int cast; f ≥ 0.
+        (key_f(key) * self.scale) as u64
+    }
+
+    #[inline(always)]
+    fn push(&mut self, key: u128) {
+        let c = self.coarse(key);
+        if c <= self.current {
+            self.side.push(Reverse(key));
+        } else if c - self.current < WINDOW_BANDS {
+            self.buckets[(c % WINDOW_BANDS) as usize].push(key);
+            self.bucketed += 1;
+        } else {
+            self.overflow.push(Reverse(key));
+        }
+    }
+
+    #[inline(always)]
+    fn pop(&mut self) -> Option<u128> {
         loop {
-            let first = 4 * i + 1;
-            if first >= n {
-                break;
-            }
-            // Smallest child; the common full-node case is unrolled.
-            let (m, mk) = if let Some(k) = self.entries.get(first..first + 4) {
-                let (m01, k01) = if self.before(k[1], k[0]) { (1, k[1]) } else { (0, k[0]) };
-                let (m23, k23) = if self.before(k[3], k[2]) { (3, k[3]) } else { (2, k[2]) };
-                if self.before(k23, k01) { (first + m23, k23) } else { (first + m01, k01) }
-            } else {
-                let mut m = first;
-                let mut mk = self.entries[first];
-                for c in first + 1..n {
-                    let ck = self.entries[c];
-                    if self.before(ck, mk) {
-                        m = c;
-                        mk = ck;
+            match (self.band.last(), self.side.peek()) {
+                (Some(&b), Some(&Reverse(s))) => {
+                    return if s < b { self.side.pop().map(|r| r.0) } else { self.band.pop() };
+                }
+                (Some(_), None) => return self.band.pop(),
+                (None, Some(_)) => return self.side.pop().map(|r| r.0),
+                (None, None) => {
+                    if !self.next_band() {
+                        return None;
                     }
                 }
-                (m, mk)
-            };
-            if !self.before(mk, last) {
-                break;
             }
-            self.entries[i] = mk;
-            i = m;
         }
-        self.entries[i] = last;
-        Some(top)
+    }
+
+    /// Makes the next non-empty band current; false if the set is empty. Called only when the
+    /// current band and the side heap are empty.
+    fn next_band(&mut self) -> bool {
+        loop {
+            if self.bucketed == 0 {
+                let Some(&Reverse(key)) = self.overflow.peek() else {
+                    return false;
+                };
+                // Jump straight to the overflow's first band (its coarse key is > current).
+                self.current = self.coarse(key) - 1;
+            }
+            self.current += 1;
+            let window_end = self.current.saturating_add(WINDOW_BANDS);
+            while let Some(&Reverse(key)) = self.overflow.peek() {
+                let c = self.coarse(key);
+                if c >= window_end {
+                    break;
+                }
+                self.overflow.pop();
+                self.buckets[(c % WINDOW_BANDS) as usize].push(key);
+                self.bucketed += 1;
+            }
+            let bucket = &mut self.buckets[(self.current % WINDOW_BANDS) as usize];
+            if !bucket.is_empty() {
+                std::mem::swap(&mut self.band, bucket);
+                self.bucketed -= self.band.len();
+                self.band.sort_unstable_by(|a, b| b.cmp(a));
+                return true;
+            }
+        }
     }
 }
 
@@ -271,15 +329,18 @@ impl AStar {
             goal_col: goal % width,
             h_scale: if min_cost > 0.0 { f64::from(min_cost) } else { 0.0 },
         };
-        search.heap.reset(width, goal);
+        // Bands a fraction of the cheapest step wide.
+        let cost_unit = if search.h_scale > 0.0 { search.h_scale } else { 1.0 };
+        search.heap.reset(BANDS_PER_UNIT / cost_unit);
         search.cells[start] = CellState { g: 0.0, parent: start as u32, stamp: open_stamp };
         let f_start = search.heuristic(start / width, start % width);
-        search.heap.push(Open { f_bits: f_start.to_bits(), cell: start as u32 });
+        search.heap.push(open_key(f_start, 0.0, start as u32));
 
         let sqrt2 = std::f64::consts::SQRT_2;
         let mut expansions = 0_usize;
         let mut found = false;
-        while let Some(Open { cell, .. }) = search.heap.pop() {
+        while let Some(key) = search.heap.pop() {
+            let cell = key_cell(key);
             let cur = cell as usize;
             // Lazy deletion: with a consistent heuristic the first pop of a cell carries its
             // best g, so any later pop of the same cell is stale.
@@ -397,7 +458,7 @@ impl Search<'_> {
         if state.stamp != self.open_stamp || ng < state.g {
             *state = CellState { g: ng, parent: cur, stamp: self.open_stamp };
             let f = ng + self.heuristic(row, col);
-            self.heap.push(Open { f_bits: f.to_bits(), cell: nb as u32 });
+            self.heap.push(open_key(f, ng, nb as u32));
         }
     }
 }
@@ -407,8 +468,7 @@ mod tests {
     use super::*;
     use rand::{RngExt, SeedableRng};
     use rand_chacha::ChaCha8Rng;
-    use std::cmp::{Ordering, Reverse};
-    use std::collections::BinaryHeap;
+    use std::cmp::Ordering;
 
     /// Plain Dijkstra over the same move model, returning the optimal cost.
     fn dijkstra(width: usize, height: usize, cost: &[f32], start: usize, goal: usize) -> Option<f64> {
@@ -469,12 +529,23 @@ mod tests {
     }
 
     fn random_grid(rng: &mut ChaCha8Rng, width: usize, height: usize, blocked: f64) -> Vec<f32> {
+        random_grid_with(rng, width, height, blocked, 2.0)
+    }
+
+    /// Costs uniform in `[1, max_cost)`, `blocked` of the cells blocked.
+    fn random_grid_with(
+        rng: &mut ChaCha8Rng,
+        width: usize,
+        height: usize,
+        blocked: f64,
+        max_cost: f32,
+    ) -> Vec<f32> {
         (0..width * height)
             .map(|_| {
                 if rng.random_bool(blocked) {
                     f32::INFINITY
                 } else {
-                    rng.random_range(1.0..2.0)
+                    rng.random_range(1.0..max_cost)
                 }
             })
             .collect()
@@ -534,6 +605,53 @@ mod tests {
             }
         }
         assert!(found > 1000, "too few solvable cases: {found}");
+    }
+
+    /// Other cost models: a wide cost range (keys jump past the open set's band window),
+    /// integer costs (many equal `f`), and `min_cost = 0` (Dijkstra).
+    #[test]
+    fn matches_dijkstra_with_wide_integer_and_zero_heuristic_costs() {
+        let mut rng = ChaCha8Rng::seed_from_u64(43);
+        for trial in 0..300 {
+            let width = rng.random_range(1..=30);
+            let height = rng.random_range(1..=30);
+            let mut cost = random_grid_with(&mut rng, width, height, 0.15, 500.0);
+            let model = trial % 3;
+            if model == 1 {
+                for c in cost.iter_mut().filter(|c| c.is_finite()) {
+                    *c = (*c % 3.0).floor() + 1.0;
+                }
+            }
+            let min_cost = if model == 2 { 0.0 } else { 1.0 };
+            let mut astar = AStar::new(width, height);
+            for _ in 0..3 {
+                let start = rng.random_range(0..width * height);
+                let goal = rng.random_range(0..width * height);
+                let got = astar.plan(start, goal, min_cost, |i| cost[i]);
+                let want = dijkstra(width, height, &cost, start, goal);
+                match (&got, want) {
+                    (Some(p), Some(w)) => {
+                        assert!((p.cost - w).abs() <= 1e-6 * w.max(1.0), "trial {trial}");
+                        check_path(width, &cost, p, start, goal);
+                    }
+                    (None, None) => {}
+                    _ => panic!("trial {trial}: A* {got:?} vs Dijkstra {want:?}"),
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn uniform_cost_straight_line_expands_only_the_line() {
+        // Equal f everywhere on the line: preferring larger g dives straight to the goal.
+        let mut astar = AStar::new(200, 1);
+        let path = astar.plan(0, 199, 1.0, |_| 1.0).expect("path");
+        assert_eq!(path.cost, 199.0);
+        assert_eq!(astar.expansions(), 200);
+        let mut astar = AStar::new(100, 100);
+        let path = astar.plan(0, 99 * 100 + 99, 1.0, |_| 1.0).expect("path");
+        assert_eq!(path.cells.len(), 100);
+        assert!(astar.expansions() < 400, "{} expansions", astar.expansions());
     }
 
     #[test]

@@ -27,6 +27,9 @@ pub struct HistoricSol {
     pub distance_m: f64,
     /// Of which without VO, metres.
     pub novo_m: f64,
+    /// The drive ended in a fault historically: the distance is not a budget, the replay drives
+    /// the sol's window and the fault must emerge from the zones and the uncertainty.
+    pub ended_in_fault: bool,
 }
 
 /// One sol of the calendar.

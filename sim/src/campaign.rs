@@ -204,21 +204,20 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
         let _ = r_before;
 
         if record.drove {
+            let mut end = cal.drive_end.0;
+            if planning == Planning::Ground && plan_last_drive == Some(idx) {
+                if let Some(pass) = entry.downlink_lmst {
+                    end = end.min(pass.0.saturating_sub(c.post_drive_imaging_s));
+                }
+            }
+            let window = DriveLimits { max_distance_m: None, max_time_s: Some(f64::from(end.saturating_sub(cal.drive_start.0))) };
             let (limits, vo) = match (strategy, entry.historic) {
+                // A historic fault must emerge from the geometry: drive the window, not the record.
                 (Strategy::Replay, Some(h)) => (
-                    DriveLimits { max_distance_m: Some(h.distance_m), max_time_s: None },
+                    if h.ended_in_fault { window } else { DriveLimits { max_distance_m: Some(h.distance_m), max_time_s: None } },
                     VoSource::Historic { novo_fraction: if h.distance_m > 0.0 { h.novo_m / h.distance_m } else { 0.0 } },
                 ),
-                _ => {
-                    let mut end = cal.drive_end.0;
-                    if planning == Planning::Ground && plan_last_drive == Some(idx) {
-                        if let Some(pass) = entry.downlink_lmst {
-                            end = end.min(pass.0.saturating_sub(c.post_drive_imaging_s));
-                        }
-                    }
-                    let window_s = f64::from(end.saturating_sub(cal.drive_start.0));
-                    (DriveLimits { max_distance_m: None, max_time_s: Some(window_s) }, VoSource::Terrain)
-                }
+                _ => (window, VoSource::Terrain),
             };
             let result = drive_sol(&ctx, &mut state, limits, vo, &mut rng, &mut astar);
             record.distance_m = result.distance_m;

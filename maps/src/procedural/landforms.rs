@@ -14,7 +14,7 @@ use super::{DuneField, TerrainParams};
 const RELIEF_WAVELENGTH_M: f64 = 400.0;
 const RELIEF_OCTAVES: usize = 5;
 /// Decimetre-scale roughness so slopes and shading are never perfectly smooth.
-const ROUGHNESS_WAVELENGTH_M: f64 = 8.0;
+const ROUGHNESS_WAVELENGTH_M: f64 = 6.0;
 const ROUGHNESS_M: f64 = 0.15;
 /// Ejecta falls off as (r/R)⁻³ and is cut at this many crater radii.
 const EJECTA_REACH: f64 = 3.0;
@@ -291,32 +291,50 @@ impl Landforms {
         }
     }
 
-    /// Height (m, before clamping) at map point `(x_m, y_m)` in pixel `(col, row)`, and
-    /// whether the point is forced to sand (dune field or sand patch).
-    pub(super) fn at(&self, x_m: f64, y_m: f64, col: usize, row: usize) -> (f64, bool) {
-        let mut z = self.base_m
-            + self.relief_m * self.relief.at(x_m, y_m)
-            + ROUGHNESS_M * self.roughness.at(x_m, y_m);
-        let bin = (row / BIN_PX) * self.bins_x + col / BIN_PX;
-        if let (Some(&a), Some(&b)) = (self.bin_start.get(bin), self.bin_start.get(bin + 1)) {
-            for &i in &self.bin_items[a as usize..b as usize] {
-                z += self.craters[i as usize].height_m(x_m, y_m);
+    /// Heights (m, clamped by `clamp`) and forced-sand flags of raster row `row`, whose pixel
+    /// centres lie at `(xs[col], y_m)`.
+    pub(super) fn fill_row(
+        &self,
+        row: usize,
+        xs: &[f64],
+        y_m: f64,
+        clamp: impl Fn(f64) -> f64,
+        heights: &mut [f32],
+        forced: &mut [bool],
+    ) {
+        let mut relief = vec![0.0; xs.len()];
+        let mut roughness = vec![0.0; xs.len()];
+        self.relief.row(xs, y_m, &mut relief);
+        self.roughness.row(xs, y_m, &mut roughness);
+        let bins = self.bins_x * (row / BIN_PX);
+        for (col, (&x_m, (z_out, sand_out))) in xs
+            .iter()
+            .zip(heights.iter_mut().zip(forced.iter_mut()))
+            .enumerate()
+        {
+            let mut z = self.base_m + self.relief_m * relief[col] + ROUGHNESS_M * roughness[col];
+            let bin = bins + col / BIN_PX;
+            if let (Some(&a), Some(&b)) = (self.bin_start.get(bin), self.bin_start.get(bin + 1)) {
+                for &i in &self.bin_items[a as usize..b as usize] {
+                    z += self.craters[i as usize].height_m(x_m, y_m);
+                }
             }
+            for r in &self.ridges {
+                z += r.height_at(x_m, y_m);
+            }
+            let mut sand = false;
+            for d in &self.dunes {
+                let (dz, inside) = d.at(x_m, y_m);
+                z += dz;
+                sand |= inside;
+            }
+            for &(c, r2) in &self.patches {
+                let (dx, dy) = (x_m - c[0], y_m - c[1]);
+                sand |= dx * dx + dy * dy < r2;
+            }
+            *z_out = clamp(z) as f32;
+            *sand_out = sand;
         }
-        for r in &self.ridges {
-            z += r.height_at(x_m, y_m);
-        }
-        let mut sand = false;
-        for d in &self.dunes {
-            let (dz, inside) = d.at(x_m, y_m);
-            z += dz;
-            sand |= inside;
-        }
-        for &(c, r2) in &self.patches {
-            let (dx, dy) = (x_m - c[0], y_m - c[1]);
-            sand |= dx * dx + dy * dy < r2;
-        }
-        (z, sand)
     }
 
     #[cfg(test)]
@@ -330,4 +348,59 @@ impl Landforms {
 pub(super) fn smoothstep(t: f64) -> f64 {
     let t = t.clamp(0.0, 1.0);
     t * t * (3.0 - 2.0 * t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn crater_profile_has_rim_bowl_and_fading_ejecta() {
+        let c = Crater {
+            x_m: 0.0,
+            y_m: 0.0,
+            radius_m: 10.0,
+            depth_m: 4.0,
+            rim_m: 0.8,
+        };
+        assert!((c.height_m(0.0, 0.0) - (0.8 - 4.0)).abs() < 1e-12, "floor");
+        assert!((c.height_m(10.0, 0.0) - 0.8).abs() < 1e-12, "rim inside");
+        assert!(
+            (c.height_m(0.0, -10.0 - 1e-9) - 0.8).abs() < 1e-6,
+            "rim outside"
+        );
+        assert!(c.height_m(20.0, 0.0) > 0.0 && c.height_m(20.0, 0.0) < 0.8);
+        assert!(
+            c.height_m(29.999, 0.0).abs() < 1e-3,
+            "ejecta reaches zero at 3 radii"
+        );
+        assert_eq!(c.height_m(31.0, 0.0), 0.0);
+        // Inner wall at the rim: 2·depth/radius = 0.8, i.e. 38.7°, a hazard.
+        let wall = (c.height_m(10.0, 0.0) - c.height_m(9.99, 0.0)) / 0.01;
+        assert!((wall - 0.8).abs() < 1e-2, "{wall}");
+    }
+
+    #[test]
+    fn craters_are_counted_by_density_and_ridges_ignore_it() {
+        let base = TerrainParams {
+            crater_density_per_km2: 0.0,
+            ..TerrainParams::default()
+        };
+        assert_eq!(Landforms::new(&base).crater_count(), 0);
+        let dense = TerrainParams {
+            crater_density_per_km2: 50.0,
+            ..TerrainParams::default()
+        };
+        // 1 km² map plus a 180 m ejecta margin: 1.36² km² × 50 ≈ 92.
+        let n = Landforms::new(&dense).crater_count();
+        assert!((91..=93).contains(&n), "{n}");
+        let ridge = |p: &TerrainParams| {
+            Landforms::new(p)
+                .ridges
+                .iter()
+                .map(|r| r.start_m)
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(ridge(&base), ridge(&dense));
+    }
 }

@@ -78,13 +78,54 @@ fn floor_i64(x: f64) -> i64 {
     if i as f64 > x { i - 1 } else { i }
 }
 
-/// The gradient of a lattice corner from its column and row hashes: one multiply per corner
-/// (the column and row products are shared by the four corners of a cell).
-#[inline]
-fn corner_gradient(seed: u64, hx: u64, hy: u64) -> (f64, f64) {
-    let mut h = seed ^ hx ^ hy;
-    h = (h ^ (h >> 32)).wrapping_mul(0xD6E8_FEB8_6659_FD93);
-    GRADIENTS[(h >> 60) as usize]
+const HASH_X: u64 = 0x9E37_79B9_7F4A_7C15;
+const HASH_Y: u64 = 0xC2B2_AE3D_27D4_EB4F;
+
+/// The four corner gradients of one lattice cell.
+#[derive(Clone, Copy, Debug)]
+struct Cell {
+    g00: (f64, f64),
+    g10: (f64, f64),
+    g01: (f64, f64),
+    g11: (f64, f64),
+}
+
+impl Cell {
+    /// The cell whose lower corner is lattice point `(ix, iy)`.
+    #[inline]
+    fn new(seed: u64, ix: i64, iy: i64) -> Self {
+        // Casting wraps negative cells to distinct u64 values, which is all a hash needs.
+        let hx0 = (ix as u64).wrapping_mul(HASH_X);
+        let hx1 = (ix.wrapping_add(1) as u64).wrapping_mul(HASH_X);
+        let hy0 = (iy as u64).wrapping_mul(HASH_Y).rotate_left(29);
+        let hy1 = (iy.wrapping_add(1) as u64)
+            .wrapping_mul(HASH_Y)
+            .rotate_left(29);
+        // One multiply per corner: the column and row products are shared.
+        let corner = |hx: u64, hy: u64| {
+            let h = seed ^ hx ^ hy;
+            GRADIENTS[((h ^ (h >> 32)).wrapping_mul(0xD6E8_FEB8_6659_FD93) >> 60) as usize]
+        };
+        Self {
+            g00: corner(hx0, hy0),
+            g10: corner(hx1, hy0),
+            g01: corner(hx0, hy1),
+            g11: corner(hx1, hy1),
+        }
+    }
+
+    /// Noise at offset `(fx, fy)` in `[0, 1)²` inside the cell; `v = fade(fy)`.
+    #[inline]
+    fn eval(&self, fx: f64, fy: f64, v: f64) -> f64 {
+        let n00 = self.g00.0 * fx + self.g00.1 * fy;
+        let n10 = self.g10.0 * (fx - 1.0) + self.g10.1 * fy;
+        let n01 = self.g01.0 * fx + self.g01.1 * (fy - 1.0);
+        let n11 = self.g11.0 * (fx - 1.0) + self.g11.1 * (fy - 1.0);
+        let u = fade(fx);
+        let a = n00 + u * (n10 - n00);
+        let b = n01 + u * (n11 - n01);
+        (a + v * (b - a)) * std::f64::consts::SQRT_2
+    }
 }
 
 /// Gradient noise at `(x, y)` in lattice units: smooth, zero on lattice points, roughly in
@@ -93,58 +134,40 @@ fn corner_gradient(seed: u64, hx: u64, hy: u64) -> (f64, f64) {
 #[must_use]
 pub(super) fn gradient(seed: u64, x: f64, y: f64) -> f64 {
     let (ix, iy) = (floor_i64(x), floor_i64(y));
-    let (fx, fy) = (x - ix as f64, y - iy as f64);
-    const KX: u64 = 0x9E37_79B9_7F4A_7C15;
-    const KY: u64 = 0xC2B2_AE3D_27D4_EB4F;
-    // Casting wraps negative cells to distinct u64 values, which is all a hash needs.
-    let (hx0, hx1) = ((ix as u64).wrapping_mul(KX), (ix.wrapping_add(1) as u64).wrapping_mul(KX));
-    let (hy0, hy1) = (
-        (iy as u64).wrapping_mul(KY).rotate_left(29),
-        (iy.wrapping_add(1) as u64).wrapping_mul(KY).rotate_left(29),
-    );
-    let dot = |hx: u64, hy: u64, dx: f64, dy: f64| {
-        let (gx, gy) = corner_gradient(seed, hx, hy);
-        gx * dx + gy * dy
-    };
-    let n00 = dot(hx0, hy0, fx, fy);
-    let n10 = dot(hx1, hy0, fx - 1.0, fy);
-    let n01 = dot(hx0, hy1, fx, fy - 1.0);
-    let n11 = dot(hx1, hy1, fx - 1.0, fy - 1.0);
-    let (u, v) = (fade(fx), fade(fy));
-    let a = n00 + u * (n10 - n00);
-    let b = n01 + u * (n11 - n01);
-    (a + v * (b - a)) * std::f64::consts::SQRT_2
+    let fy = y - iy as f64;
+    Cell::new(seed, ix, iy).eval(x - ix as f64, fy, fade(fy))
 }
 
 /// Fractal Brownian motion: `octaves` of [`gradient`] noise, each half the wavelength and half
 /// the amplitude of the previous, normalised so the result stays roughly in `[-1, 1]`.
-/// Each octave is rotated and offset so the lattices never line up.
+/// Each octave's lattice is offset so the octaves' lattices never line up. The lattices are
+/// axis-aligned so that [`Fbm::row`] can reuse a cell's gradients along a raster row.
 #[derive(Clone, Debug)]
 pub(super) struct Fbm {
     seeds: [u64; MAX_OCTAVES],
-    /// Per octave: the rotation (cos, sin) times the octave frequency, and an offset.
-    frames: [(f64, f64, f64, f64); MAX_OCTAVES],
+    /// Per octave: frequency (lattice cells per unit) and lattice offset (x, y).
+    frames: [(f64, f64, f64); MAX_OCTAVES],
     octaves: usize,
     norm: f64,
 }
 
 impl Fbm {
     /// Noise whose coarsest octave has wavelength `wavelength_m` (in the units of the
-    /// coordinates passed to [`Fbm::at`]); `octaves` is clamped to 1..=8.
+    /// coordinates passed to [`Fbm::row`]); `octaves` is clamped to 1..=8.
     #[must_use]
     pub(super) fn new(seed: u64, wavelength_m: f64, octaves: usize) -> Self {
         let octaves = octaves.clamp(1, MAX_OCTAVES);
         let mut seeds = [0; MAX_OCTAVES];
-        let mut frames = [(0.0, 0.0, 0.0, 0.0); MAX_OCTAVES];
-        // Rotate each octave by atan2(3, 4) ≈ 36.87° more than the last: no trigonometry needed.
-        let (mut c, mut s) = (1.0f64, 0.0f64);
+        let mut frames = [(0.0, 0.0, 0.0); MAX_OCTAVES];
         let mut freq = 1.0 / wavelength_m;
         let (mut amp, mut total) = (1.0, 0.0);
         for o in 0..octaves {
             seeds[o] = sub_seed(seed, o as u64);
-            let off = 1000.0 * white(seeds[o], -1, -1);
-            frames[o] = (c * freq, s * freq, off, -off);
-            (c, s) = (0.8 * c - 0.6 * s, 0.6 * c + 0.8 * s);
+            frames[o] = (
+                freq,
+                1000.0 * white(seeds[o], -1, 0),
+                1000.0 * white(seeds[o], 0, -1),
+            );
             freq *= 2.0;
             total += amp;
             amp *= 0.5;
@@ -157,18 +180,50 @@ impl Fbm {
         }
     }
 
-    /// The noise at `(x, y)`.
-    #[inline]
+    /// The noise at `(x, y)`: the reference for [`Fbm::row`].
+    #[cfg(test)]
     #[must_use]
     pub(super) fn at(&self, x: f64, y: f64) -> f64 {
         let mut sum = 0.0;
         let mut amp = 1.0;
         for o in 0..self.octaves {
-            let (c, s, ox, oy) = self.frames[o];
-            sum += amp * gradient(self.seeds[o], c * x - s * y + ox, s * x + c * y + oy);
+            let (f, ox, oy) = self.frames[o];
+            sum += amp * gradient(self.seeds[o], x * f + ox, y * f + oy);
             amp *= 0.5;
         }
         sum * self.norm
+    }
+
+    /// The noise at `(xs[i], y)` into `out[i]`, bit-identical to `at` but several times faster:
+    /// the row terms are computed once and each cell's gradients are reused along the row.
+    pub(super) fn row(&self, xs: &[f64], y: f64, out: &mut [f64]) {
+        out.fill(0.0);
+        let mut amp = 1.0;
+        for o in 0..self.octaves {
+            let (f, ox, oy) = self.frames[o];
+            let yy = y * f + oy;
+            let iy = floor_i64(yy);
+            let fy = yy - iy as f64;
+            let v = fade(fy);
+            let mut cell: Option<(i64, Cell)> = None;
+            for (acc, &x) in out.iter_mut().zip(xs) {
+                let xx = x * f + ox;
+                let ix = floor_i64(xx);
+                let c = match cell {
+                    Some((cx, c)) if cx == ix => c,
+                    _ => {
+                        let c = Cell::new(self.seeds[o], ix, iy);
+                        cell = Some((ix, c));
+                        c
+                    }
+                };
+                *acc += amp * c.eval(xx - ix as f64, fy, v);
+            }
+            amp *= 0.5;
+        }
+        for acc in out.iter_mut() {
+            *acc *= self.norm;
+        }
     }
 }
 
@@ -202,6 +257,19 @@ mod tests {
         assert_eq!(white(1, 2, 3), white(1, 2, 3));
         assert_ne!(white(1, 2, 3), white(1, 3, 2));
         assert_ne!(sub_seed(1, 0), sub_seed(1, 1));
+    }
+
+    #[test]
+    fn row_evaluation_matches_pointwise_bit_for_bit() {
+        let f = Fbm::new(99, 37.0, 6);
+        let xs: Vec<f64> = (0..500).map(|i| -120.0 + (i as f64 + 0.5) * 0.7).collect();
+        let mut out = vec![0.0; xs.len()];
+        for y in [-55.25, 0.0, 3.5, 1e5 + 0.3] {
+            f.row(&xs, y, &mut out);
+            for (x, v) in xs.iter().zip(&out) {
+                assert_eq!(v.to_bits(), f.at(*x, y).to_bits(), "({x}, {y})");
+            }
+        }
     }
 
     #[test]

@@ -13,27 +13,28 @@ use std::path::PathBuf;
 /// ```text
 /// zones/x.geojson: features[2] ("dune west").geometry: ring 0 crosses itself at (120.5, 33.0); expected a simple polygon
 /// ```
+///
+/// The message is complete on its own: underlying I/O and JSON errors are quoted in it rather than
+/// chained as `source()`, so printing the error (or an `anyhow` chain of it) says everything once.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum ZoneError {
     /// The file could not be read.
-    #[error("{}: cannot read zones file: {source}", path.display())]
+    #[error("{}: cannot read zones file: {error}", path.display())]
     Io {
         /// The zones file.
         path: PathBuf,
-        /// What the operating system said.
-        #[source]
-        source: std::io::Error,
+        /// What the operating system said (part of the message, so not also a `source`).
+        error: std::io::Error,
     },
 
     /// The file is not JSON (the message gives the line and column).
-    #[error("{}: invalid JSON: {source}", path.display())]
+    #[error("{}: invalid JSON: {error}", path.display())]
     InvalidJson {
         /// The zones file.
         path: PathBuf,
         /// The parser's complaint, with line and column.
-        #[source]
-        source: serde_json::Error,
+        error: serde_json::Error,
     },
 
     /// The top level is not a GeoJSON FeatureCollection with a `features` array.
@@ -61,7 +62,7 @@ pub enum ZoneError {
 
     /// A feature is not valid GeoJSON (e.g. not `"type": "Feature"`, or a position with fewer than
     /// two numbers).
-    #[error("{}: features[{feature}] ({name:?}): invalid GeoJSON Feature: {source}", path.display())]
+    #[error("{}: features[{feature}] ({name:?}): invalid GeoJSON Feature: {error}", path.display())]
     InvalidFeature {
         /// The zones file.
         path: PathBuf,
@@ -70,8 +71,7 @@ pub enum ZoneError {
         /// The feature's name, or `zone-<index>`.
         name: String,
         /// The GeoJSON reader's complaint.
-        #[source]
-        source: serde_json::Error,
+        error: serde_json::Error,
     },
 
     /// A feature's `properties.name` is present but not a string.

@@ -1,10 +1,10 @@
 //! Reading zones from GeoJSON text: structure checks with a path for every complaint, then the
 //! `geojson` crate for each Feature, then ring validation.
 
+use super::ZoneKind;
 use super::error::ZoneError;
 use super::geometry::P;
 use super::validation::{PolygonProblem, validate_polygon};
-use super::ZoneKind;
 use serde_json::Value;
 use std::borrow::Cow;
 use std::path::Path;
@@ -24,8 +24,10 @@ pub(super) struct ZoneRecord {
 /// Parse and validate every feature of a zones FeatureCollection.
 pub(super) fn read_zones(text: &str, path: &Path) -> Result<Vec<ZoneRecord>, ZoneError> {
     let text = quote_non_finite_literals(text);
-    let root: Value = serde_json::from_str(&text)
-        .map_err(|source| ZoneError::InvalidJson { path: path.to_owned(), source })?;
+    let root: Value = serde_json::from_str(&text).map_err(|error| ZoneError::InvalidJson {
+        path: path.to_owned(),
+        error,
+    })?;
     let not_collection = |field: &str, found: String| ZoneError::NotFeatureCollection {
         path: path.to_owned(),
         field: field.to_owned(),
@@ -42,12 +44,24 @@ pub(super) fn read_zones(text: &str, path: &Path) -> Result<Vec<ZoneRecord>, Zon
     let features = match root.remove("features") {
         Some(Value::Array(features)) => features,
         Some(other) => return Err(not_collection("features", describe(&other))),
-        None => return Err(not_collection("features", "no \"features\" member".to_owned())),
+        None => {
+            return Err(not_collection(
+                "features",
+                "no \"features\" member".to_owned(),
+            ));
+        }
     };
     if u32::try_from(features.len()).is_err() {
-        return Err(ZoneError::TooManyZones { path: path.to_owned(), count: features.len() });
+        return Err(ZoneError::TooManyZones {
+            path: path.to_owned(),
+            count: features.len(),
+        });
     }
-    features.into_iter().enumerate().map(|(i, value)| read_feature(i, value, path)).collect()
+    features
+        .into_iter()
+        .enumerate()
+        .map(|(i, value)| read_feature(i, value, path))
+        .collect()
 }
 
 /// A short description of a JSON value for messages.
@@ -69,30 +83,41 @@ fn read_feature(i: usize, value: Value, path: &Path) -> Result<ZoneRecord, ZoneE
         None | Some(Value::Null) => format!("zone-{i}"),
         Some(Value::String(s)) => s.clone(),
         Some(other) => {
-            return Err(ZoneError::InvalidName { path: path.to_owned(), feature: i, found: other.to_string() });
+            return Err(ZoneError::InvalidName {
+                path: path.to_owned(),
+                feature: i,
+                found: other.to_string(),
+            });
         }
     };
     if let Some(coordinates) = value.get("geometry").and_then(|g| g.get("coordinates")) {
-        find_non_finite(coordinates, &mut "geometry.coordinates".to_owned(), &|field, axis, literal| {
-            ZoneError::NonFiniteCoordinate {
+        find_non_finite(
+            coordinates,
+            &mut "geometry.coordinates".to_owned(),
+            &|field, axis, literal| ZoneError::NonFiniteCoordinate {
                 path: path.to_owned(),
                 feature: i,
                 name: name.clone(),
                 field,
                 axis,
                 value: literal.to_owned(),
-            }
-        })?;
+            },
+        )?;
     }
-    let feature: geojson::Feature = serde_json::from_value(value).map_err(|source| ZoneError::InvalidFeature {
-        path: path.to_owned(),
-        feature: i,
-        name: name.clone(),
-        source,
-    })?;
+    let feature: geojson::Feature =
+        serde_json::from_value(value).map_err(|error| ZoneError::InvalidFeature {
+            path: path.to_owned(),
+            feature: i,
+            name: name.clone(),
+            error,
+        })?;
     let kind = match feature.property("kind") {
         None | Some(Value::Null) => {
-            return Err(ZoneError::MissingKind { path: path.to_owned(), feature: i, name });
+            return Err(ZoneError::MissingKind {
+                path: path.to_owned(),
+                feature: i,
+                name,
+            });
         }
         Some(value) => match value.as_str().and_then(parse_kind) {
             Some(kind) => kind,
@@ -107,9 +132,17 @@ fn read_feature(i: usize, value: Value, path: &Path) -> Result<ZoneRecord, ZoneE
         },
     };
     let Some(geometry) = feature.geometry else {
-        return Err(ZoneError::MissingGeometry { path: path.to_owned(), feature: i, name });
+        return Err(ZoneError::MissingGeometry {
+            path: path.to_owned(),
+            feature: i,
+            name,
+        });
     };
-    let ctx = FeatureContext { path, feature: i, name: &name };
+    let ctx = FeatureContext {
+        path,
+        feature: i,
+        name: &name,
+    };
     let polygons = match geometry.value {
         geojson::GeometryValue::Polygon { coordinates } => {
             vec![ctx.polygon(&coordinates, "geometry.coordinates", "geometry")?]
@@ -131,7 +164,12 @@ fn read_feature(i: usize, value: Value, path: &Path) -> Result<ZoneRecord, ZoneE
             });
         }
     };
-    Ok(ZoneRecord { feature: i, name, kind, polygons })
+    Ok(ZoneRecord {
+        feature: i,
+        name,
+        kind,
+        polygons,
+    })
 }
 
 /// `keep_in` / `keep_out`, ignoring case, `_`, `-` and spaces (`keep-in`, `KeepIn`, `KEEP_OUT` …).
@@ -173,7 +211,13 @@ impl FeatureContext<'_> {
                     [x, y, ..] => ring_xy.push([*x, *y]),
                     short => {
                         let field = format!("{rings_field}[{r}][{k}]");
-                        return Err(ZoneError::PositionTooShort { path, feature, name, field, len: short.len() });
+                        return Err(ZoneError::PositionTooShort {
+                            path,
+                            feature,
+                            name,
+                            field,
+                            len: short.len(),
+                        });
                     }
                 }
             }
@@ -182,24 +226,65 @@ impl FeatureContext<'_> {
         let ring_field = |r: usize| format!("{rings_field}[{r}]");
         let field = polygon_field.to_owned();
         validate_polygon(&xy).map_err(|problem| match problem {
-            PolygonProblem::NoRings => ZoneError::EmptyPolygon { path, feature, name, field: rings_field.to_owned() },
-            PolygonProblem::TooFewPositions { ring, positions } => {
-                ZoneError::RingTooShort { path, feature, name, field: ring_field(ring), positions }
-            }
-            PolygonProblem::NotClosed { ring, first, last } => {
-                ZoneError::RingNotClosed { path, feature, name, field: ring_field(ring), first, last }
-            }
-            PolygonProblem::ZeroArea { ring } => ZoneError::ZeroAreaRing { path, feature, name, field: ring_field(ring) },
-            PolygonProblem::SelfIntersection { ring, at } => {
-                ZoneError::SelfIntersection { path, feature, name, field, ring, at }
-            }
-            PolygonProblem::RingsCross { ring_a, ring_b, at } => {
-                ZoneError::RingsCross { path, feature, name, field, ring_a, ring_b, at }
-            }
-            PolygonProblem::HoleOutsideShell { ring } => ZoneError::HoleOutsideShell { path, feature, name, field, ring },
-            PolygonProblem::HolesOverlap { ring_a, ring_b } => {
-                ZoneError::HolesOverlap { path, feature, name, field, ring_a, ring_b }
-            }
+            PolygonProblem::NoRings => ZoneError::EmptyPolygon {
+                path,
+                feature,
+                name,
+                field: rings_field.to_owned(),
+            },
+            PolygonProblem::TooFewPositions { ring, positions } => ZoneError::RingTooShort {
+                path,
+                feature,
+                name,
+                field: ring_field(ring),
+                positions,
+            },
+            PolygonProblem::NotClosed { ring, first, last } => ZoneError::RingNotClosed {
+                path,
+                feature,
+                name,
+                field: ring_field(ring),
+                first,
+                last,
+            },
+            PolygonProblem::ZeroArea { ring } => ZoneError::ZeroAreaRing {
+                path,
+                feature,
+                name,
+                field: ring_field(ring),
+            },
+            PolygonProblem::SelfIntersection { ring, at } => ZoneError::SelfIntersection {
+                path,
+                feature,
+                name,
+                field,
+                ring,
+                at,
+            },
+            PolygonProblem::RingsCross { ring_a, ring_b, at } => ZoneError::RingsCross {
+                path,
+                feature,
+                name,
+                field,
+                ring_a,
+                ring_b,
+                at,
+            },
+            PolygonProblem::HoleOutsideShell { ring } => ZoneError::HoleOutsideShell {
+                path,
+                feature,
+                name,
+                field,
+                ring,
+            },
+            PolygonProblem::HolesOverlap { ring_a, ring_b } => ZoneError::HolesOverlap {
+                path,
+                feature,
+                name,
+                field,
+                ring_a,
+                ring_b,
+            },
         })
     }
 }
@@ -257,7 +342,10 @@ fn quote_non_finite_literals(text: &str) -> Cow<'_, str> {
             }
         } else if c == b'"' {
             in_string = true;
-        } else if let Some(literal) = LITERALS.iter().find(|l| bytes[i..].starts_with(l.as_bytes())) {
+        } else if let Some(literal) = LITERALS
+            .iter()
+            .find(|l| bytes[i..].starts_with(l.as_bytes()))
+        {
             let s = out.get_or_insert_with(|| String::with_capacity(text.len() + 16));
             s.push_str(&text[copied..i]);
             s.push('"');
@@ -297,10 +385,20 @@ mod tests {
 
     #[test]
     fn non_finite_literals_are_quoted_outside_strings_only() {
-        assert!(matches!(quote_non_finite_literals("[1, 2]"), Cow::Borrowed(_)));
-        assert_eq!(quote_non_finite_literals("[NaN, -Infinity]"), "[\"\\u0000NaN\", \"\\u0000-Infinity\"]");
-        assert_eq!(quote_non_finite_literals(r#"{"a": "NaN \" Infinity"}"#), r#"{"a": "NaN \" Infinity"}"#);
-        let v: Value = serde_json::from_str(&quote_non_finite_literals("[Infinity]")).expect("json");
+        assert!(matches!(
+            quote_non_finite_literals("[1, 2]"),
+            Cow::Borrowed(_)
+        ));
+        assert_eq!(
+            quote_non_finite_literals("[NaN, -Infinity]"),
+            "[\"\\u0000NaN\", \"\\u0000-Infinity\"]"
+        );
+        assert_eq!(
+            quote_non_finite_literals(r#"{"a": "NaN \" Infinity"}"#),
+            r#"{"a": "NaN \" Infinity"}"#
+        );
+        let v: Value =
+            serde_json::from_str(&quote_non_finite_literals("[Infinity]")).expect("json");
         assert_eq!(v[0].as_str(), Some("\u{0}Infinity"));
     }
 }

@@ -6,8 +6,8 @@
 //! floating-point coordinates. Distances are computed in ordinary floating point, a few ulps from
 //! the true value.
 
-use geo::algorithm::kernels::{Kernel, Orientation, RobustKernel};
 use geo::Coord;
+use geo::algorithm::kernels::{Kernel, Orientation, RobustKernel};
 
 /// A point in map metres: `[x east, y north]`.
 pub(super) type P = [f64; 2];
@@ -84,8 +84,16 @@ pub(super) fn locate_in_ring(p: P, ring: &[P]) -> Location {
     let mut inside = false;
     let mut a = last;
     for &b in ring {
-        let (min_x, max_x) = if a[0] <= b[0] { (a[0], b[0]) } else { (b[0], a[0]) };
-        let (min_y, max_y) = if a[1] <= b[1] { (a[1], b[1]) } else { (b[1], a[1]) };
+        let (min_x, max_x) = if a[0] <= b[0] {
+            (a[0], b[0])
+        } else {
+            (b[0], a[0])
+        };
+        let (min_y, max_y) = if a[1] <= b[1] {
+            (a[1], b[1])
+        } else {
+            (b[1], a[1])
+        };
         let in_box = p[0] >= min_x && p[0] <= max_x && p[1] >= min_y && p[1] <= max_y;
         // Half-open rule: the edge counts when it straddles the horizontal line through p.
         let straddles = (a[1] > p[1]) != (b[1] > p[1]);
@@ -104,7 +112,11 @@ pub(super) fn locate_in_ring(p: P, ring: &[P]) -> Location {
         // Otherwise the edge is entirely west of p, or does not straddle p's row.
         a = b;
     }
-    if inside { Location::Inside } else { Location::Outside }
+    if inside {
+        Location::Inside
+    } else {
+        Location::Outside
+    }
 }
 
 /// Twice the signed area of a ring given open or closed (positive when counter-clockwise): a fan
@@ -131,17 +143,25 @@ pub(super) struct Aabb {
 
 impl Aabb {
     /// The empty box (contains nothing; the identity of [`Aabb::union`]).
-    pub const EMPTY: Aabb = Aabb { min: [f64::INFINITY; 2], max: [f64::NEG_INFINITY; 2] };
+    pub const EMPTY: Aabb = Aabb {
+        min: [f64::INFINITY; 2],
+        max: [f64::NEG_INFINITY; 2],
+    };
 
     /// The smallest box holding both ends of a segment.
     #[inline]
     pub fn of_segment(a: P, b: P) -> Aabb {
-        Aabb { min: [a[0].min(b[0]), a[1].min(b[1])], max: [a[0].max(b[0]), a[1].max(b[1])] }
+        Aabb {
+            min: [a[0].min(b[0]), a[1].min(b[1])],
+            max: [a[0].max(b[0]), a[1].max(b[1])],
+        }
     }
 
     /// The smallest box holding all `points`.
     pub fn of_points(points: &[P]) -> Aabb {
-        points.iter().fold(Aabb::EMPTY, |bb, &p| bb.union(Aabb { min: p, max: p }))
+        points
+            .iter()
+            .fold(Aabb::EMPTY, |bb, &p| bb.union(Aabb { min: p, max: p }))
     }
 
     /// The smallest box holding both boxes.
@@ -179,7 +199,10 @@ impl Aabb {
     /// Centre of the box.
     #[inline]
     pub fn centre(&self) -> P {
-        [0.5 * (self.min[0] + self.max[0]), 0.5 * (self.min[1] + self.max[1])]
+        [
+            0.5 * (self.min[0] + self.max[0]),
+            0.5 * (self.min[1] + self.max[1]),
+        ]
     }
 }
 
@@ -199,7 +222,10 @@ mod tests {
         assert_eq!(locate_in_ring([0.0, 2.0], &SQUARE), Location::Boundary);
         // Rows through vertices must not double count.
         assert_eq!(locate_in_ring([-1.0, 4.0], &SQUARE), Location::Outside);
-        assert_eq!(locate_in_ring([2.0, 4.0 - 1e-12], &SQUARE), Location::Inside);
+        assert_eq!(
+            locate_in_ring([2.0, 4.0 - 1e-12], &SQUARE),
+            Location::Inside
+        );
         let mut cw = SQUARE;
         cw.reverse();
         assert_eq!(locate_in_ring([2.0, 2.0], &cw), Location::Inside);
@@ -235,7 +261,13 @@ mod tests {
         closed.reverse();
         assert_eq!(ring_double_area(&closed), -32.0);
         let bb = Aabb::of_points(&SQUARE);
-        assert_eq!(bb, Aabb { min: [0.0, 0.0], max: [4.0, 4.0] });
+        assert_eq!(
+            bb,
+            Aabb {
+                min: [0.0, 0.0],
+                max: [4.0, 4.0]
+            }
+        );
         assert_eq!(bb.distance_squared([7.0, 8.0]), 25.0);
         assert_eq!(bb.distance_squared([1.0, 1.0]), 0.0);
         assert!(!Aabb::EMPTY.contains([0.0, 0.0]));

@@ -38,12 +38,19 @@ impl Polygons {
         let first_ring = self.rings.len() as u32;
         let mut ring_aabbs = Vec::with_capacity(rings.len());
         for ring in rings {
-            self.rings.push(RingSpan { start: self.vertices.len() as u32, len: ring.len() as u32 });
+            self.rings.push(RingSpan {
+                start: self.vertices.len() as u32,
+                len: ring.len() as u32,
+            });
             self.vertices.extend_from_slice(ring);
             ring_aabbs.push(Aabb::of_points(ring));
         }
         let aabb = ring_aabbs.first().copied().unwrap_or(Aabb::EMPTY);
-        self.polygons.push(PolygonEntry { rings: first_ring..self.rings.len() as u32, aabb, ring_aabbs });
+        self.polygons.push(PolygonEntry {
+            rings: first_ring..self.rings.len() as u32,
+            aabb,
+            ring_aabbs,
+        });
     }
 
     /// Number of polygons.
@@ -71,12 +78,14 @@ impl Polygons {
 
     /// Every directed edge `(a, b)` of polygon `index`, interior on the left.
     pub fn edges(&self, index: usize) -> impl Iterator<Item = (P, P)> + '_ {
-        self.rings(index).flat_map(|ring| ring_edges(ring))
+        self.rings(index).flat_map(ring_edges)
     }
 
     /// Every edge of every polygon.
     pub fn all_edges(&self) -> Vec<[P; 2]> {
-        (0..self.len()).flat_map(|i| self.edges(i).map(|(a, b)| [a, b])).collect()
+        (0..self.len())
+            .flat_map(|i| self.edges(i).map(|(a, b)| [a, b]))
+            .collect()
     }
 
     /// Locate `p` relative to polygon `index` (closed, holes excluded).
@@ -122,7 +131,12 @@ mod tests {
     use super::*;
 
     fn square(x0: f64, y0: f64, side: f64) -> Vec<P> {
-        vec![[x0, y0], [x0 + side, y0], [x0 + side, y0 + side], [x0, y0 + side]]
+        vec![
+            [x0, y0],
+            [x0 + side, y0],
+            [x0 + side, y0 + side],
+            [x0, y0 + side],
+        ]
     }
 
     #[test]

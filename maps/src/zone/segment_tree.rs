@@ -31,7 +31,11 @@ impl SegmentTree {
     pub fn new(mut segments: Vec<[P; 2]>) -> Self {
         let mut nodes = Vec::with_capacity(2 * segments.len() / LEAF_SIZE + 1);
         if !segments.is_empty() {
-            nodes.push(Node { aabb: Aabb::EMPTY, first: 0, count: 0 });
+            nodes.push(Node {
+                aabb: Aabb::EMPTY,
+                first: 0,
+                count: 0,
+            });
             build(&mut nodes, 0, &mut segments, 0);
         }
         Self { segments, nodes }
@@ -82,21 +86,42 @@ impl SegmentTree {
 
 /// Fill node `index` with `segments` (which start at `offset` in the tree's array), recursively.
 fn build(nodes: &mut Vec<Node>, index: usize, segments: &mut [[P; 2]], offset: usize) {
-    let aabb = segments.iter().fold(Aabb::EMPTY, |bb, s| bb.union(Aabb::of_segment(s[0], s[1])));
+    let aabb = segments
+        .iter()
+        .fold(Aabb::EMPTY, |bb, s| bb.union(Aabb::of_segment(s[0], s[1])));
     if segments.len() <= LEAF_SIZE {
-        nodes[index] = Node { aabb, first: offset as u32, count: segments.len() as u32 };
+        nodes[index] = Node {
+            aabb,
+            first: offset as u32,
+            count: segments.len() as u32,
+        };
         return;
     }
-    let centres = segments
-        .iter()
-        .fold(Aabb::EMPTY, |bb, s| bb.union(Aabb { min: mid(s), max: mid(s) }));
+    let centres = segments.iter().fold(Aabb::EMPTY, |bb, s| {
+        bb.union(Aabb {
+            min: mid(s),
+            max: mid(s),
+        })
+    });
     let axis = usize::from(centres.max[1] - centres.min[1] > centres.max[0] - centres.min[0]);
     let half = segments.len() / 2;
     segments.select_nth_unstable_by(half, |a, b| mid(a)[axis].total_cmp(&mid(b)[axis]));
     let first = nodes.len();
-    nodes[index] = Node { aabb, first: first as u32, count: 0 };
-    nodes.push(Node { aabb: Aabb::EMPTY, first: 0, count: 0 });
-    nodes.push(Node { aabb: Aabb::EMPTY, first: 0, count: 0 });
+    nodes[index] = Node {
+        aabb,
+        first: first as u32,
+        count: 0,
+    };
+    nodes.push(Node {
+        aabb: Aabb::EMPTY,
+        first: 0,
+        count: 0,
+    });
+    nodes.push(Node {
+        aabb: Aabb::EMPTY,
+        first: 0,
+        count: 0,
+    });
     let (left, right) = segments.split_at_mut(half);
     build(nodes, first, left, offset);
     build(nodes, first + 1, right, offset + half);
@@ -115,25 +140,44 @@ mod tests {
 
     #[test]
     fn empty_tree_is_infinitely_far() {
-        assert_eq!(SegmentTree::new(Vec::new()).nearest_distance([0.0, 0.0]), f64::INFINITY);
+        assert_eq!(
+            SegmentTree::new(Vec::new()).nearest_distance([0.0, 0.0]),
+            f64::INFINITY
+        );
     }
 
     #[test]
     fn equals_brute_force() {
         let mut rng = ChaCha8Rng::seed_from_u64(7);
-        let pt = |rng: &mut ChaCha8Rng| [rng.random_range(-100.0..100.0), rng.random_range(-100.0..100.0)];
+        let pt = |rng: &mut ChaCha8Rng| {
+            [
+                rng.random_range(-100.0..100.0),
+                rng.random_range(-100.0..100.0),
+            ]
+        };
         let segments: Vec<[P; 2]> = (0..500)
             .map(|_| {
                 let a = pt(&mut rng);
-                [a, [a[0] + rng.random_range(-5.0..5.0), a[1] + rng.random_range(-5.0..5.0)]]
+                [
+                    a,
+                    [
+                        a[0] + rng.random_range(-5.0..5.0),
+                        a[1] + rng.random_range(-5.0..5.0),
+                    ],
+                ]
             })
             .collect();
         let tree = SegmentTree::new(segments.clone());
         assert_eq!(tree.segments().len(), 500);
         for _ in 0..2000 {
-            let p = [rng.random_range(-150.0..150.0), rng.random_range(-150.0..150.0)];
-            let brute =
-                segments.iter().map(|s| distance_point_segment(p, s[0], s[1])).fold(f64::INFINITY, f64::min);
+            let p = [
+                rng.random_range(-150.0..150.0),
+                rng.random_range(-150.0..150.0),
+            ];
+            let brute = segments
+                .iter()
+                .map(|s| distance_point_segment(p, s[0], s[1]))
+                .fold(f64::INFINITY, f64::min);
             assert_eq!(tree.nearest_distance(p), brute);
         }
     }

@@ -36,12 +36,18 @@ pub(super) fn union_boundary(polygons: &Polygons) -> Vec<[P; 2]> {
     let mut shared: Vec<Shared> = Vec::new();
     let mut near: Vec<usize> = Vec::new();
     for (i, entry) in entries.iter().enumerate() {
-        let candidates: Vec<usize> =
-            (0..entries.len()).filter(|&j| j != i && entries[j].aabb.overlaps(&entry.aabb)).collect();
+        let candidates: Vec<usize> = (0..entries.len())
+            .filter(|&j| j != i && entries[j].aabb.overlaps(&entry.aabb))
+            .collect();
         for (a, b) in polygons.edges(i) {
             let edge_box = Aabb::of_segment(a, b);
             near.clear();
-            near.extend(candidates.iter().copied().filter(|&j| entries[j].aabb.overlaps(&edge_box)));
+            near.extend(
+                candidates
+                    .iter()
+                    .copied()
+                    .filter(|&j| entries[j].aabb.overlaps(&edge_box)),
+            );
             if near.is_empty() {
                 out.push([a, b]);
                 continue;
@@ -89,7 +95,12 @@ fn cut(a: P, b: P, c: P, d: P, j: usize, ts: &mut Vec<f64>, shared: &mut Vec<Sha
         if t1 > t0 {
             ts.extend([t0, t1]);
             let opposite = (d[0] - c[0]) * (b[0] - a[0]) + (d[1] - c[1]) * (b[1] - a[1]) < 0.0;
-            shared.push(Shared { other: j, t0, t1, opposite });
+            shared.push(Shared {
+                other: j,
+                t0,
+                t1,
+                opposite,
+            });
         }
         return;
     }
@@ -119,7 +130,10 @@ fn cut(a: P, b: P, c: P, d: P, j: usize, ts: &mut Vec<f64>, shared: &mut Vec<Sha
 fn covered(polygons: &Polygons, near: &[usize], shared: &[Shared], a: P, b: P, t: f64) -> bool {
     let m = lerp(a, b, t);
     near.iter().any(|&j| {
-        match shared.iter().find(|s| s.other == j && s.t0 <= t && t <= s.t1) {
+        match shared
+            .iter()
+            .find(|s| s.other == j && s.t0 <= t && t <= s.t1)
+        {
             // Running along an edge of Kⱼ: Kⱼ lies on one side only, decided by direction.
             Some(s) => s.opposite,
             None => polygons.locate(j, m) == Location::Inside,
@@ -136,7 +150,10 @@ mod tests {
     }
 
     fn total_length(segments: &[[P; 2]]) -> f64 {
-        segments.iter().map(|s| (s[1][0] - s[0][0]).hypot(s[1][1] - s[0][1])).sum()
+        segments
+            .iter()
+            .map(|s| (s[1][0] - s[0][0]).hypot(s[1][1] - s[0][1]))
+            .sum()
     }
 
     #[test]

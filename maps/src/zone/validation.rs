@@ -7,7 +7,9 @@
 //! Decisions use exact orientation predicates, so a valid polygon is never rejected because of
 //! rounding; reported coordinates are computed in floating point.
 
-use super::geometry::{Location, P, cross, lerp, locate_in_ring, orient, project, ring_double_area};
+use super::geometry::{
+    Location, P, cross, lerp, locate_in_ring, orient, project, ring_double_area,
+};
 use super::polygons::ring_edges;
 use geo::algorithm::kernels::Orientation;
 
@@ -41,13 +43,23 @@ pub(super) fn validate_polygon(rings: &[Vec<P>]) -> Result<Vec<Vec<P>>, PolygonP
     let mut open = Vec::with_capacity(rings.len());
     for (r, ring) in rings.iter().enumerate() {
         let (Some(&first), Some(&last)) = (ring.first(), ring.last()) else {
-            return Err(PolygonProblem::TooFewPositions { ring: r, positions: 0 });
+            return Err(PolygonProblem::TooFewPositions {
+                ring: r,
+                positions: 0,
+            });
         };
         if ring.len() < 4 {
-            return Err(PolygonProblem::TooFewPositions { ring: r, positions: ring.len() });
+            return Err(PolygonProblem::TooFewPositions {
+                ring: r,
+                positions: ring.len(),
+            });
         }
         if first != last {
-            return Err(PolygonProblem::NotClosed { ring: r, first, last });
+            return Err(PolygonProblem::NotClosed {
+                ring: r,
+                first,
+                last,
+            });
         }
         let mut v: Vec<P> = Vec::with_capacity(ring.len() - 1);
         for &p in &ring[..ring.len() - 1] {
@@ -58,7 +70,10 @@ pub(super) fn validate_polygon(rings: &[Vec<P>]) -> Result<Vec<Vec<P>>, PolygonP
         while v.len() > 1 && v.last() == v.first() {
             v.pop();
         }
-        if v.len() < 3 || v.iter().all(|&p| orient(v[0], v[1], p) == Orientation::Collinear) {
+        if v.len() < 3
+            || v.iter()
+                .all(|&p| orient(v[0], v[1], p) == Orientation::Collinear)
+        {
             return Err(PolygonProblem::ZeroArea { ring: r });
         }
         open.push(v);
@@ -118,7 +133,11 @@ fn meet(a: P, b: P, c: P, d: P) -> Meeting {
             return Meeting::Apart;
         }
         let at = [a, b, c, d].into_iter().find(|p| p[k] == lo).unwrap_or(a);
-        return if lo == hi { Meeting::Point { at, proper: false } } else { Meeting::Overlap { at } };
+        return if lo == hi {
+            Meeting::Point { at, proper: false }
+        } else {
+            Meeting::Overlap { at }
+        };
     }
     let (s3, s4) = (sign(orient(c, d, a)), sign(orient(c, d, b)));
     if s1 * s2 > 0 || s3 * s4 > 0 {
@@ -134,7 +153,10 @@ fn meet(a: P, b: P, c: P, d: P) -> Meeting {
         b
     } else {
         let (ca, cb) = (cross(c, d, a), cross(c, d, b));
-        return Meeting::Point { at: lerp(a, b, ca / (ca - cb)), proper: true };
+        return Meeting::Point {
+            at: lerp(a, b, ca / (ca - cb)),
+            proper: true,
+        };
     };
     Meeting::Point { at, proper: false }
 }
@@ -145,7 +167,11 @@ fn check_crossings(rings: &[Vec<P>]) -> Result<Vec<Vec<Vec<f64>>>, PolygonProble
     let mut edges: Vec<Edge> = rings
         .iter()
         .enumerate()
-        .flat_map(|(ring, v)| ring_edges(v).enumerate().map(move |(index, (a, b))| Edge { ring, index, a, b }))
+        .flat_map(|(ring, v)| {
+            ring_edges(v)
+                .enumerate()
+                .map(move |(index, (a, b))| Edge { ring, index, a, b })
+        })
         .collect();
     edges.sort_by(|e, f| e.a[0].min(e.b[0]).total_cmp(&f.a[0].min(f.b[0])));
     let mut touches: Vec<Vec<Vec<f64>>> = rings.iter().map(|v| vec![Vec::new(); v.len()]).collect();
@@ -202,7 +228,10 @@ fn piece_midpoints<'a>(ring: &'a [P], touches: &'a [Vec<f64>]) -> impl Iterator<
         let mut ts: Vec<f64> = ts.iter().copied().chain([0.0, 1.0]).collect();
         ts.sort_by(f64::total_cmp);
         ts.dedup();
-        let mids: Vec<P> = ts.windows(2).map(|w| lerp(a, b, 0.5 * (w[0] + w[1]))).collect();
+        let mids: Vec<P> = ts
+            .windows(2)
+            .map(|w| lerp(a, b, 0.5 * (w[0] + w[1])))
+            .collect();
         mids
     })
 }
@@ -211,13 +240,17 @@ fn piece_midpoints<'a>(ring: &'a [P], touches: &'a [Vec<f64>]) -> impl Iterator<
 fn check_holes(rings: &[Vec<P>], touches: &[Vec<Vec<f64>>]) -> Result<(), PolygonProblem> {
     let shell = &rings[0];
     for (r, hole) in rings.iter().enumerate().skip(1) {
-        if piece_midpoints(hole, &touches[r]).any(|m| locate_in_ring(m, shell) == Location::Outside) {
+        if piece_midpoints(hole, &touches[r]).any(|m| locate_in_ring(m, shell) == Location::Outside)
+        {
             return Err(PolygonProblem::HoleOutsideShell { ring: r });
         }
     }
     for (r1, h1) in rings.iter().enumerate().skip(1) {
         for (r2, h2) in rings.iter().enumerate().skip(1) {
-            if r1 != r2 && piece_midpoints(h2, &touches[r2]).any(|m| locate_in_ring(m, h1) == Location::Inside) {
+            if r1 != r2
+                && piece_midpoints(h2, &touches[r2])
+                    .any(|m| locate_in_ring(m, h1) == Location::Inside)
+            {
                 let (ring_a, ring_b) = (r1.min(r2), r1.max(r2));
                 return Err(PolygonProblem::HolesOverlap { ring_a, ring_b });
             }
@@ -240,7 +273,14 @@ mod tests {
 
     #[test]
     fn normalises_orientation_and_duplicates() {
-        let cw: Vec<P> = vec![[0.0, 0.0], [0.0, 10.0], [0.0, 10.0], [10.0, 10.0], [10.0, 0.0], [0.0, 0.0]];
+        let cw: Vec<P> = vec![
+            [0.0, 0.0],
+            [0.0, 10.0],
+            [0.0, 10.0],
+            [10.0, 10.0],
+            [10.0, 0.0],
+            [0.0, 0.0],
+        ];
         let hole_ccw = closed(&[[2.0, 2.0], [4.0, 2.0], [4.0, 4.0]]);
         let out = validate_polygon(&[cw, hole_ccw]).expect("valid");
         assert_eq!(out[0].len(), 4);
@@ -254,35 +294,88 @@ mod tests {
         assert_eq!(validate_polygon(&[]), Err(NoRings));
         assert_eq!(
             validate_polygon(&[vec![[0.0, 0.0], [1.0, 0.0], [0.0, 0.0]]]),
-            Err(TooFewPositions { ring: 0, positions: 3 })
+            Err(TooFewPositions {
+                ring: 0,
+                positions: 3
+            })
         );
         assert!(matches!(
             validate_polygon(&[SQUARE.to_vec()]),
-            Err(NotClosed { ring: 0, first: [0.0, 0.0], last: [0.0, 10.0] })
+            Err(NotClosed {
+                ring: 0,
+                first: [0.0, 0.0],
+                last: [0.0, 10.0]
+            })
         ));
-        assert_eq!(validate_polygon(&[closed(&[[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]])]), Err(ZeroArea { ring: 0 }));
+        assert_eq!(
+            validate_polygon(&[closed(&[[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]])]),
+            Err(ZeroArea { ring: 0 })
+        );
         // Bow-tie: crosses at (5, 5).
         let bowtie = closed(&[[0.0, 0.0], [10.0, 10.0], [10.0, 0.0], [0.0, 10.0]]);
-        assert_eq!(validate_polygon(&[bowtie]), Err(SelfIntersection { ring: 0, at: [5.0, 5.0] }));
+        assert_eq!(
+            validate_polygon(&[bowtie]),
+            Err(SelfIntersection {
+                ring: 0,
+                at: [5.0, 5.0]
+            })
+        );
         // Spike doubling back along an edge.
-        let spike = closed(&[[0.0, 0.0], [4.0, 0.0], [4.0, 4.0], [2.0, 4.0], [2.0, 6.0], [2.0, 4.0], [0.0, 4.0]]);
-        assert!(matches!(validate_polygon(&[spike]), Err(SelfIntersection { ring: 0, .. })));
+        let spike = closed(&[
+            [0.0, 0.0],
+            [4.0, 0.0],
+            [4.0, 4.0],
+            [2.0, 4.0],
+            [2.0, 6.0],
+            [2.0, 4.0],
+            [0.0, 4.0],
+        ]);
+        assert!(matches!(
+            validate_polygon(&[spike]),
+            Err(SelfIntersection { ring: 0, .. })
+        ));
         // Figure eight touching itself at a vertex.
-        let eight = closed(&[[0.0, 0.0], [2.0, 0.0], [1.0, 1.0], [2.0, 2.0], [0.0, 2.0], [1.0, 1.0]]);
-        assert_eq!(validate_polygon(&[eight]), Err(SelfIntersection { ring: 0, at: [1.0, 1.0] }));
+        let eight = closed(&[
+            [0.0, 0.0],
+            [2.0, 0.0],
+            [1.0, 1.0],
+            [2.0, 2.0],
+            [0.0, 2.0],
+            [1.0, 1.0],
+        ]);
+        assert_eq!(
+            validate_polygon(&[eight]),
+            Err(SelfIntersection {
+                ring: 0,
+                at: [1.0, 1.0]
+            })
+        );
         // A hole crossing the shell.
         let hole = closed(&[[5.0, 5.0], [15.0, 5.0], [15.0, 6.0], [5.0, 6.0]]);
         assert_eq!(
             validate_polygon(&[closed(&SQUARE), hole]),
-            Err(RingsCross { ring_a: 1, ring_b: 0, at: [10.0, 5.0] })
+            Err(RingsCross {
+                ring_a: 1,
+                ring_b: 0,
+                at: [10.0, 5.0]
+            })
         );
         // A hole entirely outside.
         let hole = closed(&[[20.0, 5.0], [25.0, 5.0], [25.0, 6.0]]);
-        assert_eq!(validate_polygon(&[closed(&SQUARE), hole]), Err(HoleOutsideShell { ring: 1 }));
+        assert_eq!(
+            validate_polygon(&[closed(&SQUARE), hole]),
+            Err(HoleOutsideShell { ring: 1 })
+        );
         // Nested holes.
         let h1 = closed(&[[1.0, 1.0], [9.0, 1.0], [9.0, 9.0], [1.0, 9.0]]);
         let h2 = closed(&[[2.0, 2.0], [8.0, 2.0], [8.0, 8.0], [2.0, 8.0]]);
-        assert_eq!(validate_polygon(&[closed(&SQUARE), h1, h2]), Err(HolesOverlap { ring_a: 1, ring_b: 2 }));
+        assert_eq!(
+            validate_polygon(&[closed(&SQUARE), h1, h2]),
+            Err(HolesOverlap {
+                ring_a: 1,
+                ring_b: 2
+            })
+        );
     }
 
     #[test]
@@ -305,7 +398,17 @@ mod tests {
             [0.0, 10.0],
         ]);
         // Every vertex is inside or on the shell, yet the edge (10,3)-(10,7) runs outside.
-        let hole = closed(&[[10.0, 3.0], [10.0, 7.0], [9.0, 8.0], [1.0, 8.0], [1.0, 2.0], [9.0, 2.0]]);
-        assert!(matches!(validate_polygon(&[c, hole]), Err(PolygonProblem::HoleOutsideShell { ring: 1 })));
+        let hole = closed(&[
+            [10.0, 3.0],
+            [10.0, 7.0],
+            [9.0, 8.0],
+            [1.0, 8.0],
+            [1.0, 2.0],
+            [9.0, 2.0],
+        ]);
+        assert!(matches!(
+            validate_polygon(&[c, hole]),
+            Err(PolygonProblem::HoleOutsideShell { ring: 1 })
+        ));
     }
 }
