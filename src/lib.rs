@@ -10,7 +10,7 @@
 #![warn(missing_docs)]
 
 pub mod cmd_map;
-//TMP pub mod cmd_zones;
+pub mod cmd_zones;
 pub mod error;
 pub mod expect;
 pub mod regress;

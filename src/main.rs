@@ -12,7 +12,7 @@ use clap::{Args, Parser, Subcommand};
 
 use solsim::report;
 use solsim::scenario::Scenario;
-use solsim::{cmd_map, regress};
+use solsim::{cmd_map, cmd_zones, regress};
 use sim::{CampaignOutcome, Strategy, campaign};
 
 /// Simulate multi-sol Mars rover drives: position uncertainty, grown keep-out zones, AutoNav
@@ -56,7 +56,7 @@ enum Command {
 enum ZonesCommand {
     /// For each point: distance to the nearest keep-out, distance to the keep-in edge, and
     /// max_uncertainty_m — the largest uncertainty radius at which the point stays drivable.
-    Check(ValidateArgs),
+    Check(cmd_zones::ZonesCheckArgs),
 }
 
 #[derive(Subcommand)]
@@ -188,7 +188,7 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
             Ok(ExitCode::SUCCESS)
         }
         Command::Zones(ZonesCommand::Check(a)) => {
-            let _ = a;
+            cmd_zones::run(&a, stdout)?;
             Ok(ExitCode::SUCCESS)
         }
         Command::Map(MapCommand::Generate(a)) => {

@@ -19,4 +19,4 @@ pub mod zone;
 pub use raster::{GeoTransform, Raster};
 pub use raster_io::{MapLayers, RasterError};
 pub use terrain::TerrainClass;
-pub use zone::{ZoneError, ZoneKind, ZoneSet};
+pub use zone::{Clearance, Zone, ZoneError, ZoneHandle, ZoneKind, ZoneSet};

@@ -449,7 +449,7 @@ fn class_thresholds(
     let sand_below = quantile(&mut sand, sand_fraction).unwrap_or(f32::NEG_INFINITY);
     let mut rock: Vec<f32> = sample
         .iter()
-        .filter(|p| !(p.sand < sand_below))
+        .filter(|p| p.sand >= sand_below)
         .map(|p| p.rock)
         .collect();
     let rock_share = (bedrock_fraction / (1.0 - sand_fraction).max(1e-9)).min(1.0);

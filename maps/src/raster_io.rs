@@ -258,53 +258,40 @@ pub fn read_dem(
     georef: Option<GeoTransform>,
 ) -> Result<Raster<f32>, RasterError> {
     const EXPECTED: &str = "a single-band 16-bit unsigned (cm) or 32-bit float (m) DEM";
-    let (raster, nodata) = match Format::of(path)? {
+    let dem = match Format::of(path)? {
         Format::Png => {
             let geo = georef.ok_or_else(|| RasterError::MissingGeoreference {
                 path: path.to_path_buf(),
             })?;
-            let cm = png::read_png_any::<u16>(path, geo)?;
-            (dem_from_cm(&cm, datum_m), None)
+            dem_from_cm(&png::read_png_any::<u16>(path, geo)?, datum_m)
         }
         Format::GeoTiff => {
-            let raw = geotiff::read_samples(path, georef, EXPECTED, |s| {
-                matches!(s, geotiff::Kind::U16 | geotiff::Kind::F32)
+            let raw = geotiff::read_samples(path, georef, EXPECTED, |kind| {
+                matches!(kind, geotiff::Kind::U16 | geotiff::Kind::F32)
             })?;
-            let nodata = raw.nodata;
             let (width, height, geo) = (raw.width, raw.height, raw.geo);
             match raw.samples {
                 sealed::Samples::U16(data) => {
-                    if let Some(nd) = nodata
-                        && let Some(i) = data.iter().position(|&v| f64::from(v) == nd)
-                    {
-                        return Err(RasterError::NoData {
-                            path: path.to_path_buf(),
-                            pixel: pixel_of_index(i, width),
-                            nodata: nd,
-                        });
-                    }
-                    (
-                        dem_from_cm(
-                            &Raster {
-                                width,
-                                height,
-                                geo,
-                                data,
-                            },
-                            datum_m,
-                        ),
-                        None,
+                    reject_nodata(path, &data, width, raw.nodata, f64::from)?;
+                    dem_from_cm(
+                        &Raster {
+                            width,
+                            height,
+                            geo,
+                            data,
+                        },
+                        datum_m,
                     )
                 }
-                sealed::Samples::F32(data) => (
+                sealed::Samples::F32(data) => {
+                    reject_nodata(path, &data, width, raw.nodata, f64::from)?;
                     Raster {
                         width,
                         height,
                         geo,
                         data,
-                    },
-                    nodata,
-                ),
+                    }
+                }
                 sealed::Samples::U8(_) => {
                     return Err(RasterError::WrongSampleFormat {
                         path: path.to_path_buf(),
@@ -315,23 +302,33 @@ pub fn read_dem(
             }
         }
     };
-    for (i, &h) in raster.data.iter().enumerate() {
-        if !h.is_finite() {
-            return Err(RasterError::NonFinite {
-                path: path.to_path_buf(),
-                pixel: pixel_of_index(i, raster.width),
-                value_m: h,
-            });
-        }
-        if nodata.is_some_and(|nd| f64::from(h) == nd) {
-            return Err(RasterError::NoData {
-                path: path.to_path_buf(),
-                pixel: pixel_of_index(i, raster.width),
-                nodata: nodata.unwrap_or_default(),
-            });
-        }
+    if let Some(i) = dem.data.iter().position(|h| !h.is_finite()) {
+        return Err(RasterError::NonFinite {
+            path: path.to_path_buf(),
+            pixel: pixel_of_index(i, dem.width),
+            value_m: dem.data[i],
+        });
     }
-    Ok(raster)
+    Ok(dem)
+}
+
+/// Rejects a DEM holding its own no-data value.
+fn reject_nodata<T: Copy>(
+    path: &Path,
+    data: &[T],
+    width: usize,
+    nodata: Option<f64>,
+    to_f64: impl Fn(T) -> f64,
+) -> Result<(), RasterError> {
+    let Some(nodata) = nodata else { return Ok(()) };
+    match data.iter().position(|&v| to_f64(v) == nodata) {
+        Some(i) => Err(RasterError::NoData {
+            path: path.to_path_buf(),
+            pixel: pixel_of_index(i, width),
+            nodata,
+        }),
+        None => Ok(()),
+    }
 }
 
 /// Writes a DEM (metres) atomically as 16-bit centimetres above `datum_m`: a 16-bit PNG (no

@@ -102,7 +102,7 @@ fn golden_digest_for_seed_42() {
         "generator output changed; see this test's doc comment"
     );
 }
-const GOLDEN_SEED_42: (usize, u64) = (0, 0);
+const GOLDEN_SEED_42: (usize, u64) = (73_728, 1_127_406_129_960_537_347);
 
 #[test]
 fn heights_stay_in_the_16_bit_centimetre_range() {

@@ -298,6 +298,9 @@ fn gdal_like_georeferences_are_understood() {
     );
 }
 
+/// (file name, tags, GeoKey directory, expected words in the message).
+type Case = (&'static str, Vec<(Tag, Vec<f64>)>, Option<Vec<u16>>, &'static str);
+
 #[test]
 fn unusable_georeferences_are_rejected_clearly() {
     let dir = tempfile::tempdir().unwrap();
@@ -305,7 +308,7 @@ fn unusable_georeferences_are_rejected_clearly() {
         Tag::ModelTiepointTag,
         vec![0.0, 0.0, 0.0, 480.0, 840.0, 0.0],
     );
-    let cases: Vec<(&str, Vec<(Tag, Vec<f64>)>, Option<Vec<u16>>, &str)> = vec![
+    let cases: Vec<Case> = vec![
         (
             "nonsquare",
             vec![(Tag::ModelPixelScaleTag, vec![2.0, 1.0, 0.0]), tie.clone()],

@@ -115,10 +115,10 @@ impl Dunes {
         let f = &self.field;
         let (dx, dy) = (x_m - f.center_m[0], y_m - f.center_m[1]);
         let d2 = dx * dx + dy * dy;
-        if !(d2 < f.radius_m * f.radius_m) {
+        if d2 >= f.radius_m * f.radius_m {
             return (0.0, false);
         }
-        if !(f.wavelength_m > 0.0) {
+        if f.wavelength_m <= 0.0 {
             return (0.0, true);
         }
         let wl = f.wavelength_m;

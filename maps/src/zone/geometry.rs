@@ -45,23 +45,15 @@ pub(super) fn project(a: P, b: P, p: P) -> f64 {
     ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / (dx * dx + dy * dy)
 }
 
-/// Euclidean distance from `p` to the closed segment `a b`.
-///
-/// Past either end it is the distance to that end; alongside, the perpendicular distance
-/// `|(b − a) × (p − a)| / |b − a|` (the form GEOS uses, accurate for points near the line).
+/// Euclidean distance from `p` to the closed segment `a b`, by parry's exact point projection
+/// on a [`Segment`](parry2d_f64::shape::Segment) (the nearest point is an end or the orthogonal
+/// foot; no polygonal approximation anywhere).
 #[inline]
 pub(super) fn distance_point_segment(p: P, a: P, b: P) -> f64 {
-    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-    let (px, py) = (p[0] - a[0], p[1] - a[1]);
-    let len2 = dx * dx + dy * dy;
-    let along = px * dx + py * dy;
-    if along <= 0.0 || len2 == 0.0 {
-        return px.hypot(py);
-    }
-    if along >= len2 {
-        return (p[0] - b[0]).hypot(p[1] - b[1]);
-    }
-    (dx * py - dy * px).abs() / len2.sqrt()
+    use parry2d_f64::math::Vector;
+    use parry2d_f64::query::PointQuery;
+    use parry2d_f64::shape::Segment;
+    Segment::new(Vector::new(a[0], a[1]), Vector::new(b[0], b[1])).distance_to_local_point(Vector::new(p[0], p[1]), true)
 }
 
 /// Where a point lies relative to a closed region.

@@ -1,0 +1,41 @@
+//! The bundled scenarios are the regression suite: every `[[expect]]` in `scenarios/` must hold
+//! (the paper 000 figures: sols 717-719 end at 32.92 m; sol 385 faults NO_PATH after ~14 m at
+//! r ≈ 26.9 m and sol 386 drives ~245 m; the rapid traverse's sols 402-409 and the two sols saved
+//! by onboard localization). A failure prints the same diff as `solsim regress scenarios/`.
+
+use std::path::Path;
+
+use solsim::regress;
+
+fn check(file: &str) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios").join(file);
+    let results = regress::check_scenario(&path).unwrap_or_else(|e| panic!("{e}"));
+    assert!(!results.is_empty(), "{file} has no expectations");
+    let failed: Vec<_> = results.iter().filter(|r| !r.mismatches.is_empty()).cloned().collect();
+    assert!(failed.is_empty(), "\n{}", regress::text_report(&failed));
+}
+
+#[test]
+fn sol717_719_ends_at_32_92_m() {
+    check("sol717-719.toml");
+}
+
+#[test]
+fn sol383_386_faults_no_path_on_385_and_onboard_avoids_it() {
+    check("sol383-386.toml");
+}
+
+#[test]
+fn rapid_traverse_402_409_and_two_sols_saved() {
+    check("rapid-traverse-379-409.toml");
+}
+
+#[test]
+fn every_bundled_scenario_validates() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios");
+    let files = regress::scenario_files(&dir).expect("scenarios/ is readable");
+    assert!(files.len() >= 3);
+    for f in files {
+        solsim::scenario::Scenario::load(&f).unwrap_or_else(|e| panic!("{e}"));
+    }
+}
