@@ -42,15 +42,22 @@ RADIUS_CELLS = 10.0
 
 
 def ensure_venv():
-    """Re-exec inside peers/.venv (created and filled from requirements.txt if missing)."""
+    """Re-exec inside peers/.venv, creating it and installing requirements.txt as needed.
+
+    The venv is shared with other peer scripts, so the packages are probed, not assumed.
+    """
     if Path(sys.prefix).resolve() == VENV.resolve():
         return
     py = VENV / "bin" / "python"
     if not py.exists():
         subprocess.run([sys.executable, "-m", "venv", str(VENV)], check=True)
+    probe = subprocess.run([str(py), "-c", "import cv2, numpy, scipy, pyastar2d"],
+                           capture_output=True)
+    if probe.returncode != 0:
+        print(f"installing {PEERS / 'requirements.txt'} into {VENV}", file=sys.stderr)
         subprocess.run([str(py), "-m", "pip", "install", "-q", "-r",
-                        str(PEERS / "requirements.txt")], check=True)
-    os.execv(str(py), [str(py), *sys.argv])
+                        str(PEERS / "requirements.txt")], check=True, stdout=sys.stderr)
+    os.execv(str(py), [str(py), str(Path(__file__).resolve()), *sys.argv[1:]])
 
 
 def timed(fn, runs):

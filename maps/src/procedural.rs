@@ -42,6 +42,8 @@ const HEIGHT_RANGE_M: (f64, f64) = (0.0, 655.0);
 const LOCAL_MEAN_RADIUS_M: f64 = 40.0;
 /// Wavelength of the noise that places sand and bedrock patches.
 const CLASS_NOISE_WAVELENGTH_M: f64 = 150.0;
+/// Cap on [`TerrainParams::ridge_count`], so a typo cannot stall generation.
+const MAX_RIDGES: usize = 1000;
 /// Upper bound on the pixels sampled to set the class thresholds.
 const THRESHOLD_SAMPLE_PX: usize = 250_000;
 /// Share of the light that reaches surfaces facing away from the sun (sky and scatter).
@@ -119,11 +121,13 @@ pub struct TerrainParams {
     pub relief_m: f64,
     /// Mean number of craters per square kilometre (range 0..~50). (default: 3)
     pub crater_density_per_km2: f64,
-    /// Smallest crater radius, metres. (default: 5)
+    /// Smallest crater radius, metres (at least 1 cm). (default: 5)
     pub crater_radius_min_m: f64,
-    /// Largest crater radius, metres; radii follow a power law, N(>r) ∝ r⁻². (default: 60)
+    /// Largest crater radius, metres (raised to the smallest if below it); radii follow a
+    /// power law, N(>r) ∝ r⁻². (default: 60)
     pub crater_radius_max_m: f64,
-    /// Number of long linear ridges (each 30–80 % of the map diagonal long). (default: 3)
+    /// Number of long linear ridges (each 30–80 % of the map diagonal long; at most 1000).
+    /// (default: 3)
     pub ridge_count: usize,
     /// Typical ridge crest height, metres (each ridge gets 0.6–1.4 times this). (default: 3)
     pub ridge_height_m: f64,
@@ -191,7 +195,7 @@ impl TerrainParams {
             crater_density_per_km2: pos(self.crater_density_per_km2, d.crater_density_per_km2),
             crater_radius_min_m: pos(self.crater_radius_min_m, d.crater_radius_min_m),
             crater_radius_max_m: pos(self.crater_radius_max_m, d.crater_radius_max_m),
-            ridge_count: self.ridge_count,
+            ridge_count: self.ridge_count.min(MAX_RIDGES),
             ridge_height_m: fin(self.ridge_height_m, d.ridge_height_m),
             dune_fields: self
                 .dune_fields
@@ -227,21 +231,10 @@ pub fn generate(params: &TerrainParams) -> MapLayers {
     let (w, h) = (p.width_px, p.height_px);
     let geo = p.geo;
     if w == 0 || h == 0 {
-        let empty = Raster {
-            width: w,
-            height: h,
-            geo,
-            data: Vec::new(),
-        };
         return MapLayers {
-            appearance: empty.clone(),
-            dem: Raster {
-                width: w,
-                height: h,
-                geo,
-                data: Vec::new(),
-            },
-            terrain: empty,
+            appearance: Raster::filled(w, h, geo, 0),
+            dem: Raster::filled(w, h, geo, 0.0),
+            terrain: Raster::filled(w, h, geo, 0),
         };
     }
     let res = geo.resolution_m_per_px;

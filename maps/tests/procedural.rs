@@ -331,7 +331,8 @@ fn documented_defaults_hold() {
 
 /// Timing and a visual check. Run with
 /// `cargo test --release -p maps --test procedural -- --ignored --nocapture`;
-/// set `SOLSIM_PREVIEW_DIR` to also write the layers as PNGs there.
+/// set `SOLSIM_PREVIEW_DIR` to also write the layers there (viewable PNGs, and the GeoTIFFs
+/// of `MapLayers::write_dir` under `geotiff/`).
 #[test]
 #[ignore = "timing and preview; run on demand in release"]
 fn generate_1500_px_timing_and_preview() {
@@ -362,6 +363,7 @@ fn generate_1500_px_timing_and_preview() {
     );
     if let Some(dir) = std::env::var_os("SOLSIM_PREVIEW_DIR") {
         let dir = std::path::PathBuf::from(dir);
+        m.write_dir(&dir.join("geotiff"), 0.0).unwrap();
         maps::raster_io::write_png(&dir.join("appearance.png"), &m.appearance).unwrap();
         let terrain = maps::Raster {
             data: m.terrain.data.iter().map(|c| c * 80).collect(),

@@ -299,7 +299,12 @@ fn gdal_like_georeferences_are_understood() {
 }
 
 /// (file name, tags, GeoKey directory, expected words in the message).
-type Case = (&'static str, Vec<(Tag, Vec<f64>)>, Option<Vec<u16>>, &'static str);
+type Case = (
+    &'static str,
+    Vec<(Tag, Vec<f64>)>,
+    Option<Vec<u16>>,
+    &'static str,
+);
 
 #[test]
 fn unusable_georeferences_are_rejected_clearly() {
