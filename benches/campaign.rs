@@ -22,11 +22,17 @@ fn scenario_path() -> std::path::PathBuf {
 fn bench_compare(c: &mut Criterion) {
     let path = scenario_path();
     let mut group = c.benchmark_group("rapid_traverse_compare");
-    group.sample_size(10).measurement_time(Duration::from_secs(10));
-    group.bench_function("load", |b| b.iter(|| Scenario::load(&path).expect("bundled scenario loads")));
+    group
+        .sample_size(10)
+        .measurement_time(Duration::from_secs(10));
+    group.bench_function("load", |b| {
+        b.iter(|| Scenario::load(&path).expect("bundled scenario loads"))
+    });
     let scenario = Scenario::load(&path).expect("bundled scenario loads");
     let strategies = scenario.strategies();
-    group.bench_function("strategies", |b| b.iter(|| regress::run_strategies(&scenario, &strategies)));
+    group.bench_function("strategies", |b| {
+        b.iter(|| regress::run_strategies(&scenario, &strategies))
+    });
     group.bench_function("compare_total", |b| {
         b.iter(|| {
             let s = Scenario::load(&path).expect("bundled scenario loads");

@@ -37,18 +37,41 @@ const MAX_SIDE_PX: usize = 20_000;
 
 /// Read and validate a recipe.
 pub fn load_recipe(path: &Path) -> Result<(TerrainParams, f64), ScenarioError> {
-    let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io { path: path.to_path_buf(), source })?;
-    let recipe: Recipe = toml::from_str(&text).map_err(|e| ScenarioError::from_toml(path, &text, &e))?;
+    let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let recipe: Recipe =
+        toml::from_str(&text).map_err(|e| ScenarioError::from_toml(path, &text, &e))?;
     let t = &recipe.terrain;
-    let bad = |field: &str, expected: &str, got: String| Err(ScenarioError::field(path, format!("terrain.{field}"), expected, got));
+    let bad = |field: &str, expected: &str, got: String| {
+        Err(ScenarioError::field(
+            path,
+            format!("terrain.{field}"),
+            expected,
+            got,
+        ))
+    };
     if t.width_px == 0 || t.width_px > MAX_SIDE_PX {
-        return bad("width_px", &format!("1 ..= {MAX_SIDE_PX} pixels"), t.width_px.to_string());
+        return bad(
+            "width_px",
+            &format!("1 ..= {MAX_SIDE_PX} pixels"),
+            t.width_px.to_string(),
+        );
     }
     if t.height_px == 0 || t.height_px > MAX_SIDE_PX {
-        return bad("height_px", &format!("1 ..= {MAX_SIDE_PX} pixels"), t.height_px.to_string());
+        return bad(
+            "height_px",
+            &format!("1 ..= {MAX_SIDE_PX} pixels"),
+            t.height_px.to_string(),
+        );
     }
     if !(t.geo.resolution_m_per_px.is_finite() && t.geo.resolution_m_per_px > 0.0) {
-        return bad("geo.resolution_m_per_px", "a positive number of metres per pixel", t.geo.resolution_m_per_px.to_string());
+        return bad(
+            "geo.resolution_m_per_px",
+            "a positive number of metres per pixel",
+            t.geo.resolution_m_per_px.to_string(),
+        );
     }
     let reals = [
         ("geo.origin_m[0]", t.geo.origin_m[0]),
@@ -70,13 +93,29 @@ pub fn load_recipe(path: &Path) -> Result<(TerrainParams, f64), ScenarioError> {
         }
     }
     for (i, f) in t.dune_fields.iter().enumerate() {
-        let vals = [f.center_m[0], f.center_m[1], f.radius_m, f.wavelength_m, f.amplitude_m, f.crest_azimuth_deg];
+        let vals = [
+            f.center_m[0],
+            f.center_m[1],
+            f.radius_m,
+            f.wavelength_m,
+            f.amplitude_m,
+            f.crest_azimuth_deg,
+        ];
         if vals.iter().any(|v| !v.is_finite()) || f.radius_m < 0.0 || f.wavelength_m <= 0.0 {
-            return bad(&format!("dune_fields[{i}]"), "finite values, radius_m ≥ 0 and wavelength_m > 0", format!("{f:?}"));
+            return bad(
+                &format!("dune_fields[{i}]"),
+                "finite values, radius_m ≥ 0 and wavelength_m > 0",
+                format!("{f:?}"),
+            );
         }
     }
     if !recipe.dem_datum_m.is_finite() {
-        return Err(ScenarioError::field(path, "dem_datum_m", "a finite number of metres", recipe.dem_datum_m));
+        return Err(ScenarioError::field(
+            path,
+            "dem_datum_m",
+            "a finite number of metres",
+            recipe.dem_datum_m,
+        ));
     }
     Ok((recipe.terrain, recipe.dem_datum_m))
 }
@@ -85,7 +124,9 @@ pub fn load_recipe(path: &Path) -> Result<(TerrainParams, f64), ScenarioError> {
 pub fn generate(args: &GenerateArgs, out: &mut dyn std::io::Write) -> anyhow::Result<()> {
     let (params, datum_m) = load_recipe(&args.recipe)?;
     let layers = procedural::generate(&params);
-    layers.write_dir(&args.out, datum_m).with_context(|| format!("{}: cannot write the map", args.out.display()))?;
+    layers
+        .write_dir(&args.out, datum_m)
+        .with_context(|| format!("{}: cannot write the map", args.out.display()))?;
     let (x0, y0, x1, y1) = layers.dem.extent_m();
     writeln!(
         out,

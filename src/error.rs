@@ -48,7 +48,7 @@ pub enum ScenarioError {
         /// The field naming the raster.
         field: String,
         /// What went wrong with the raster.
-        source: maps::RasterError,
+        source: Box<maps::RasterError>,
     },
     /// The zones file referenced by the scenario could not be loaded.
     #[error("{path}: map.zones: {source}")]
@@ -56,14 +56,24 @@ pub enum ScenarioError {
         /// The scenario file.
         path: PathBuf,
         /// What went wrong with the zones.
-        source: maps::ZoneError,
+        source: Box<maps::ZoneError>,
     },
 }
 
 impl ScenarioError {
     /// A [`ScenarioError::Field`] error.
-    pub fn field(path: &std::path::Path, field: impl Into<String>, expected: impl Into<String>, got: impl std::fmt::Display) -> Self {
-        ScenarioError::Field { path: path.to_path_buf(), field: field.into(), expected: expected.into(), got: got.to_string() }
+    pub fn field(
+        path: &std::path::Path,
+        field: impl Into<String>,
+        expected: impl Into<String>,
+        got: impl std::fmt::Display,
+    ) -> Self {
+        ScenarioError::Field {
+            path: path.to_path_buf(),
+            field: field.into(),
+            expected: expected.into(),
+            got: got.to_string(),
+        }
     }
 
     /// Turn a TOML parse error into a one-line [`ScenarioError::Syntax`].
@@ -74,8 +84,25 @@ impl ScenarioError {
         let line = before.matches('\n').count() + 1;
         let line_start = before.rfind('\n').map_or(0, |i| i + 1);
         let column = text[line_start..offset].chars().count() + 1;
-        let line_text = text[line_start..].lines().next().unwrap_or("").trim().to_string();
-        let message = err.message().lines().next().unwrap_or("invalid TOML").trim().to_string();
-        ScenarioError::Syntax { path: path.to_path_buf(), line, column, text: line_text, message }
+        let line_text = text[line_start..]
+            .lines()
+            .next()
+            .unwrap_or("")
+            .trim()
+            .to_string();
+        let message = err
+            .message()
+            .lines()
+            .next()
+            .unwrap_or("invalid TOML")
+            .trim()
+            .to_string();
+        ScenarioError::Syntax {
+            path: path.to_path_buf(),
+            line,
+            column,
+            text: line_text,
+            message,
+        }
     }
 }

@@ -119,25 +119,59 @@ pub struct Expectation {
 
 impl RawExpectation {
     /// Validate against the scenario's calendar.
-    pub fn resolve(self, path: &Path, index: usize, calendar: &Calendar) -> Result<Expectation, ScenarioError> {
+    pub fn resolve(
+        self,
+        path: &Path,
+        index: usize,
+        calendar: &Calendar,
+    ) -> Result<Expectation, ScenarioError> {
         let f = |name: &str| format!("expect[{index}].{name}");
         let names = Strategy::ALL.map(Strategy::name).join(", ");
-        let strategy = Strategy::from_name(&self.strategy).ok_or_else(|| ScenarioError::field(path, f("strategy"), format!("one of {names}"), format!("{:?}", self.strategy)))?;
-        if let Some(sol) = self.sol {
-            if !calendar.sols.iter().any(|s| s.sol == sol) {
-                return Err(ScenarioError::field(path, f("sol"), "a sol of the calendar", sol));
-            }
+        let strategy = Strategy::from_name(&self.strategy).ok_or_else(|| {
+            ScenarioError::field(
+                path,
+                f("strategy"),
+                format!("one of {names}"),
+                format!("{:?}", self.strategy),
+            )
+        })?;
+        if let Some(sol) = self.sol
+            && !calendar.sols.iter().any(|s| s.sol == sol)
+        {
+            return Err(ScenarioError::field(
+                path,
+                f("sol"),
+                "a sol of the calendar",
+                sol,
+            ));
         }
         let mut checks = Vec::new();
-        let per_sol = self.fault.is_some() || self.fault_after_m.is_some() || self.fault_uncertainty_m.is_some() || self.distance_m.is_some() || self.end_uncertainty_m.is_some() || self.drove.is_some();
+        let per_sol = self.fault.is_some()
+            || self.fault_after_m.is_some()
+            || self.fault_uncertainty_m.is_some()
+            || self.distance_m.is_some()
+            || self.end_uncertainty_m.is_some()
+            || self.drove.is_some();
         if per_sol && self.sol.is_none() {
-            return Err(ScenarioError::field(path, f("sol"), "a sol number for per-sol checks (fault, distance_m, …)", "nothing"));
+            return Err(ScenarioError::field(
+                path,
+                f("sol"),
+                "a sol number for per-sol checks (fault, distance_m, …)",
+                "nothing",
+            ));
         }
         if let Some(fault) = self.fault {
             let kind = match fault.as_str() {
                 "none" => None,
                 "NO_PATH" | "KEEP_OUT" | "KEEP_IN" => Some(fault.clone()),
-                other => return Err(ScenarioError::field(path, f("fault"), "\"NO_PATH\", \"KEEP_OUT\", \"KEEP_IN\" or \"none\"", format!("{other:?}"))),
+                other => {
+                    return Err(ScenarioError::field(
+                        path,
+                        f("fault"),
+                        "\"NO_PATH\", \"KEEP_OUT\", \"KEEP_IN\" or \"none\"",
+                        format!("{other:?}"),
+                    ));
+                }
             };
             checks.push(Check::Fault(kind));
         }
@@ -149,12 +183,24 @@ impl RawExpectation {
             ("total_distance_m", self.total_distance_m),
             ("max_uncertainty_m", self.max_uncertainty_m),
         ];
-        let int_ranges: [(&'static str, Option<[u32; 2]>); 3] =
-            [("no_path_faults", self.no_path_faults), ("faults", self.faults), ("sols_to_goal", self.sols_to_goal)];
-        for (quantity, r) in ranges.into_iter().chain(int_ranges.into_iter().map(|(q, r)| (q, r.map(|[a, b]| [f64::from(a), f64::from(b)])))) {
+        let int_ranges: [(&'static str, Option<[u32; 2]>); 3] = [
+            ("no_path_faults", self.no_path_faults),
+            ("faults", self.faults),
+            ("sols_to_goal", self.sols_to_goal),
+        ];
+        for (quantity, r) in ranges.into_iter().chain(
+            int_ranges
+                .into_iter()
+                .map(|(q, r)| (q, r.map(|[a, b]| [f64::from(a), f64::from(b)]))),
+        ) {
             if let Some([lo, hi]) = r {
                 if !(lo.is_finite() && hi.is_finite() && lo <= hi) {
-                    return Err(ScenarioError::field(path, f(quantity), "a range [low, high] with low ≤ high", format!("[{lo}, {hi}]")));
+                    return Err(ScenarioError::field(
+                        path,
+                        f(quantity),
+                        "a range [low, high] with low ≤ high",
+                        format!("[{lo}, {hi}]"),
+                    ));
                 }
                 checks.push(Check::Range { quantity, lo, hi });
             }
@@ -163,19 +209,50 @@ impl RawExpectation {
             checks.push(Check::Drove(d));
         }
         if let Some(s) = self.goal_sooner_than {
-            let than = Strategy::from_name(&s.strategy).ok_or_else(|| ScenarioError::field(path, f("goal_sooner_than.strategy"), format!("one of {names}"), format!("{:?}", s.strategy)))?;
-            checks.push(Check::Sooner { than, by: s.by_at_least_sols });
+            let than = Strategy::from_name(&s.strategy).ok_or_else(|| {
+                ScenarioError::field(
+                    path,
+                    f("goal_sooner_than.strategy"),
+                    format!("one of {names}"),
+                    format!("{:?}", s.strategy),
+                )
+            })?;
+            checks.push(Check::Sooner {
+                than,
+                by: s.by_at_least_sols,
+            });
         }
         if let Some(cv) = self.covers {
             if !(cv.distance_m.is_finite() && cv.distance_m > 0.0) {
-                return Err(ScenarioError::field(path, f("covers.distance_m"), "a positive number of metres", cv.distance_m));
+                return Err(ScenarioError::field(
+                    path,
+                    f("covers.distance_m"),
+                    "a positive number of metres",
+                    cv.distance_m,
+                ));
             }
-            checks.push(Check::Covers { from_sol: cv.from_sol, distance_m: cv.distance_m, lo: cv.sols[0], hi: cv.sols[1] });
+            checks.push(Check::Covers {
+                from_sol: cv.from_sol,
+                distance_m: cv.distance_m,
+                lo: cv.sols[0],
+                hi: cv.sols[1],
+            });
         }
         if checks.is_empty() {
-            return Err(ScenarioError::field(path, f("(checks)"), "at least one check (fault, distance_m, sols_to_goal, …)", "none"));
+            return Err(ScenarioError::field(
+                path,
+                f("(checks)"),
+                "at least one check (fault, distance_m, sols_to_goal, …)",
+                "none",
+            ));
         }
-        Ok(Expectation { index, what: self.what, strategy, sol: self.sol, checks })
+        Ok(Expectation {
+            index,
+            what: self.what,
+            strategy,
+            sol: self.sol,
+            checks,
+        })
     }
 }
 
@@ -219,15 +296,23 @@ impl Expectation {
         for c in &self.checks {
             match c {
                 Check::Fault(kind) => {
-                    let got = rec.and_then(|r| r.fault.as_ref()).map(|f| f.kind.name().to_string());
+                    let got = rec
+                        .and_then(|r| r.fault.as_ref())
+                        .map(|f| f.kind.name().to_string());
                     if got != *kind {
-                        out.push(Mismatch { check: label("fault"), expected: kind.clone().unwrap_or("none".into()), got: got.unwrap_or("none".into()) });
+                        out.push(Mismatch {
+                            check: label("fault"),
+                            expected: kind.clone().unwrap_or("none".into()),
+                            got: got.unwrap_or("none".into()),
+                        });
                     }
                 }
                 Check::Range { quantity, lo, hi } => {
                     let got: Option<f64> = match *quantity {
                         "fault_after_m" => rec.and_then(|r| r.fault.as_ref()).map(|f| f.after_m),
-                        "fault_uncertainty_m" => rec.and_then(|r| r.fault.as_ref()).map(|f| f.uncertainty_m),
+                        "fault_uncertainty_m" => {
+                            rec.and_then(|r| r.fault.as_ref()).map(|f| f.uncertainty_m)
+                        }
                         "distance_m" => rec.map(|r| r.distance_m),
                         "end_uncertainty_m" => rec.map(|r| r.end_uncertainty_m),
                         "total_distance_m" => Some(run.totals.distance_m),
@@ -238,13 +323,21 @@ impl Expectation {
                         _ => None,
                     };
                     if !got.is_some_and(|g| g >= *lo - 1e-9 && g <= *hi + 1e-9) {
-                        out.push(Mismatch { check: label(quantity), expected: format!("[{lo}, {hi}]"), got: fmt_opt(got) });
+                        out.push(Mismatch {
+                            check: label(quantity),
+                            expected: format!("[{lo}, {hi}]"),
+                            got: fmt_opt(got),
+                        });
                     }
                 }
                 Check::Drove(d) => {
                     let got = rec.map(|r| r.drove);
                     if got != Some(*d) {
-                        out.push(Mismatch { check: label("drove"), expected: d.to_string(), got: got.map_or("nothing".into(), |g| g.to_string()) });
+                        out.push(Mismatch {
+                            check: label("drove"),
+                            expected: d.to_string(),
+                            got: got.map_or("nothing".into(), |g| g.to_string()),
+                        });
                     }
                 }
                 Check::Sooner { than, by } => {
@@ -258,16 +351,26 @@ impl Expectation {
                     if !ok {
                         out.push(Mismatch {
                             check: label(&format!("sols_to_goal vs {}", than.name())),
-                            expected: format!("at least {by} fewer than {}", theirs.map_or("never".into(), |t| t.to_string())),
+                            expected: format!(
+                                "at least {by} fewer than {}",
+                                theirs.map_or("never".into(), |t| t.to_string())
+                            ),
                             got: mine.map_or("goal not reached".into(), |m| m.to_string()),
                         });
                     }
                 }
-                Check::Covers { from_sol, distance_m, lo, hi } => {
+                Check::Covers {
+                    from_sol,
+                    distance_m,
+                    lo,
+                    hi,
+                } => {
                     let got = run.sols_to_cover(*from_sol, *distance_m);
                     if !got.is_some_and(|g| g >= *lo && g <= *hi) {
                         out.push(Mismatch {
-                            check: label(&format!("sols to cover {distance_m} m from sol {from_sol}")),
+                            check: label(&format!(
+                                "sols to cover {distance_m} m from sol {from_sol}"
+                            )),
                             expected: format!("[{lo}, {hi}]"),
                             got: got.map_or("never".into(), |g| g.to_string()),
                         });

@@ -10,16 +10,21 @@ use std::process::ExitCode;
 use anyhow::Context as _;
 use clap::{Args, Parser, Subcommand};
 
+use sim::{CampaignOutcome, Strategy, campaign};
 use solsim::report;
 use solsim::scenario::Scenario;
 use solsim::{cmd_map, cmd_zones, regress};
-use sim::{CampaignOutcome, Strategy, campaign};
 
 /// Simulate multi-sol Mars rover drives: position uncertainty, grown keep-out zones, AutoNav
 /// NO_PATH faults, and how operations strategies (ground-in-the-loop, onboard global
 /// localization, opportunistic extension drives) change the outcome.
 #[derive(Parser)]
-#[command(name = "solsim", version, propagate_version = true, max_term_width = 100)]
+#[command(
+    name = "solsim",
+    version,
+    propagate_version = true,
+    max_term_width = 100
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -120,7 +125,6 @@ struct ValidateArgs {
     scenario: PathBuf,
 }
 
-
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match dispatch(cli) {
@@ -141,13 +145,28 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
             let scenario = Scenario::load(&a.scenario)?;
             let strategies = scenario.strategies();
             let runs = regress::run_strategies(&scenario, &strategies);
-            let outcomes: Vec<CampaignOutcome> = strategies.iter().filter_map(|s| runs.get(s).cloned()).collect();
+            let outcomes: Vec<CampaignOutcome> = strategies
+                .iter()
+                .filter_map(|s| runs.get(s).cloned())
+                .collect();
             let legs = campaign::leg_clearances(&scenario.campaign);
             if a.output.json {
-                let docs: Vec<_> = outcomes.iter().map(|o| report::run_json(&scenario, o, &legs)).collect();
-                write!(stdout, "{}", report::pretty(&serde_json::Value::Array(docs)))?;
+                let docs: Vec<_> = outcomes
+                    .iter()
+                    .map(|o| report::run_json(&scenario, o, &legs))
+                    .collect();
+                write!(
+                    stdout,
+                    "{}",
+                    report::pretty(&serde_json::Value::Array(docs))
+                )?;
             } else {
-                writeln!(stdout, "{} — {}\n", scenario.name, scenario.description.trim())?;
+                writeln!(
+                    stdout,
+                    "{} — {}\n",
+                    scenario.name,
+                    scenario.description.trim()
+                )?;
                 write!(stdout, "{}", report::compare_table(&outcomes))?;
             }
             write_files(&a.output, &scenario, &outcomes, &legs, stdout)?;
@@ -156,7 +175,8 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Run(a) => run_one(&a.scenario, &a.strategy, &a.output, stdout),
         Command::Replay(a) => run_one(&a.scenario, "replay", &a.output, stdout),
         Command::Regress(a) => {
-            let files = regress::scenario_files(&a.dir).with_context(|| format!("{}: cannot list scenario files", a.dir.display()))?;
+            let files = regress::scenario_files(&a.dir)
+                .with_context(|| format!("{}: cannot list scenario files", a.dir.display()))?;
             if files.is_empty() {
                 anyhow::bail!("{}: no scenario files (*.toml) found", a.dir.display());
             }
@@ -166,23 +186,59 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
             }
             write!(stdout, "{}", regress::text_report(&results))?;
             if let Some(path) = &a.junit {
-                report::write_atomic(path, regress::junit(&results).as_bytes()).with_context(|| format!("{}: cannot write the JUnit report", path.display()))?;
+                report::write_atomic(path, regress::junit(&results).as_bytes()).with_context(
+                    || format!("{}: cannot write the JUnit report", path.display()),
+                )?;
             }
             let failed = results.iter().any(|r| !r.mismatches.is_empty());
-            Ok(if failed { ExitCode::from(1) } else { ExitCode::SUCCESS })
+            Ok(if failed {
+                ExitCode::from(1)
+            } else {
+                ExitCode::SUCCESS
+            })
         }
         Command::Validate(a) => {
             let s = Scenario::load(&a.scenario)?;
             let c = &s.campaign;
-            let route_m: f64 = c.route.windows(2).map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1])).sum();
-            writeln!(stdout, "{}: ok — {} ({} sols {}..{}, {} waypoints, {:.1} m of route, {} expectations)", a.scenario.display(), s.name, c.calendar.sols.len(), c.calendar.sols[0].sol, c.calendar.sols[c.calendar.sols.len() - 1].sol, c.route.len(), route_m, s.expectations.len())?;
-            writeln!(stdout, "grid: {} × {} cells of {} m", c.grid.width, c.grid.height, c.grid.geo.resolution_m_per_px)?;
-            writeln!(stdout, "passage clearance per route leg (the uncertainty radius at which the leg closes):")?;
+            let route_m: f64 = c
+                .route
+                .windows(2)
+                .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
+                .sum();
+            writeln!(
+                stdout,
+                "{}: ok — {} ({} sols {}..{}, {} waypoints, {:.1} m of route, {} expectations)",
+                a.scenario.display(),
+                s.name,
+                c.calendar.sols.len(),
+                c.calendar.sols[0].sol,
+                c.calendar.sols[c.calendar.sols.len() - 1].sol,
+                c.route.len(),
+                route_m,
+                s.expectations.len()
+            )?;
+            writeln!(
+                stdout,
+                "grid: {} × {} cells of {} m",
+                c.grid.width, c.grid.height, c.grid.geo.resolution_m_per_px
+            )?;
+            writeln!(
+                stdout,
+                "passage clearance per route leg (the uncertainty radius at which the leg closes):"
+            )?;
             for l in campaign::leg_clearances(c) {
                 let p = c.route[l.to_waypoint];
                 match l.clearance_m {
-                    Some(r) => writeln!(stdout, "  leg to waypoint {:>2} ({:.1}, {:.1}): closes at r = {r:.2} m", l.to_waypoint, p[0], p[1])?,
-                    None => writeln!(stdout, "  leg to waypoint {:>2} ({:.1}, {:.1}): no path even at r = 0", l.to_waypoint, p[0], p[1])?,
+                    Some(r) => writeln!(
+                        stdout,
+                        "  leg to waypoint {:>2} ({:.1}, {:.1}): closes at r = {r:.2} m",
+                        l.to_waypoint, p[0], p[1]
+                    )?,
+                    None => writeln!(
+                        stdout,
+                        "  leg to waypoint {:>2} ({:.1}, {:.1}): no path even at r = 0",
+                        l.to_waypoint, p[0], p[1]
+                    )?,
                 }
             }
             Ok(ExitCode::SUCCESS)
@@ -198,37 +254,75 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
     }
 }
 
-fn run_one(path: &Path, strategy: &str, output: &OutputArgs, stdout: &mut dyn std::io::Write) -> anyhow::Result<ExitCode> {
+fn run_one(
+    path: &Path,
+    strategy: &str,
+    output: &OutputArgs,
+    stdout: &mut dyn std::io::Write,
+) -> anyhow::Result<ExitCode> {
     let Some(strategy) = Strategy::from_name(strategy) else {
         let names: Vec<&str> = Strategy::ALL.iter().map(|s| s.name()).collect();
-        anyhow::bail!("--strategy: expected one of {}, got {strategy:?}", names.join(", "));
+        anyhow::bail!(
+            "--strategy: expected one of {}, got {strategy:?}",
+            names.join(", ")
+        );
     };
     let scenario = Scenario::load(path)?;
     if strategy == Strategy::Replay && !scenario.has_history {
-        anyhow::bail!("{}: sols[*].historic_distance_m: expected historic distances for a replay, got none", path.display());
+        anyhow::bail!(
+            "{}: sols[*].historic_distance_m: expected historic distances for a replay, got none",
+            path.display()
+        );
     }
     let legs = campaign::leg_clearances(&scenario.campaign);
     let outcome = campaign::run_campaign(&scenario.campaign, strategy, &legs);
     if output.json {
-        write!(stdout, "{}", report::pretty(&report::run_json(&scenario, &outcome, &legs)))?;
+        write!(
+            stdout,
+            "{}",
+            report::pretty(&report::run_json(&scenario, &outcome, &legs))
+        )?;
     } else {
         write!(stdout, "{}", report::sol_table(&outcome))?;
     }
-    write_files(output, &scenario, std::slice::from_ref(&outcome), &legs, stdout)?;
+    write_files(
+        output,
+        &scenario,
+        std::slice::from_ref(&outcome),
+        &legs,
+        stdout,
+    )?;
     Ok(ExitCode::SUCCESS)
 }
 
-fn write_files(output: &OutputArgs, scenario: &Scenario, outcomes: &[CampaignOutcome], legs: &[sim::outcome::LegClearance], stdout: &mut dyn std::io::Write) -> anyhow::Result<()> {
+fn write_files(
+    output: &OutputArgs,
+    scenario: &Scenario,
+    outcomes: &[CampaignOutcome],
+    legs: &[sim::outcome::LegClearance],
+    stdout: &mut dyn std::io::Write,
+) -> anyhow::Result<()> {
     if output.no_files {
         return Ok(());
     }
-    let dir = output.out.clone().unwrap_or_else(|| Path::new("solsim-out").join(&scenario.name));
+    let dir = output
+        .out
+        .clone()
+        .unwrap_or_else(|| Path::new("solsim-out").join(&scenario.name));
     let mut written = Vec::new();
     for o in outcomes {
-        written.extend(report::write_run_files(&dir, scenario, o, legs).with_context(|| format!("{}: cannot write outputs", dir.display()))?);
+        written.extend(
+            report::write_run_files(&dir, scenario, o, legs)
+                .with_context(|| format!("{}: cannot write outputs", dir.display()))?,
+        );
     }
     if !output.json {
-        writeln!(stdout, "\nwrote {} files to {}/ (JSON, per-sol CSV, GeoJSON per strategy)", written.len(), dir.display())?;
+        writeln!(
+            stdout,
+            "\nwrote {} files to {}/ (JSON, per-sol CSV, GeoJSON per strategy)",
+            written.len(),
+            dir.display()
+        )?;
     }
     Ok(())
 }

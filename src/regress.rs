@@ -29,16 +29,26 @@ pub struct CaseResult {
 /// Run all strategies a scenario's expectations need (in parallel; results do not depend on the
 /// thread count: each strategy has its own random stream).
 #[must_use]
-pub fn run_strategies(scenario: &Scenario, strategies: &[Strategy]) -> HashMap<Strategy, CampaignOutcome> {
+pub fn run_strategies(
+    scenario: &Scenario,
+    strategies: &[Strategy],
+) -> HashMap<Strategy, CampaignOutcome> {
     let legs = campaign::leg_clearances(&scenario.campaign);
-    strategies.par_iter().map(|&s| (s, campaign::run_campaign(&scenario.campaign, s, &legs))).collect()
+    strategies
+        .par_iter()
+        .map(|&s| (s, campaign::run_campaign(&scenario.campaign, s, &legs)))
+        .collect()
 }
 
 /// Check one scenario.
 pub fn check_scenario(path: &Path) -> Result<Vec<CaseResult>, ScenarioError> {
     let start = std::time::Instant::now();
     let scenario = Scenario::load(path)?;
-    let mut needed: Vec<Strategy> = scenario.expectations.iter().flat_map(|e| e.strategies()).collect();
+    let mut needed: Vec<Strategy> = scenario
+        .expectations
+        .iter()
+        .flat_map(|e| e.strategies())
+        .collect();
     needed.sort_by_key(|s| s.stream_id());
     needed.dedup();
     let runs = run_strategies(&scenario, &needed);
@@ -71,10 +81,18 @@ pub fn scenario_files(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
 pub fn text_report(results: &[CaseResult]) -> String {
     let mut s = String::new();
     for r in results {
-        let status = if r.mismatches.is_empty() { "ok  " } else { "FAIL" };
+        let status = if r.mismatches.is_empty() {
+            "ok  "
+        } else {
+            "FAIL"
+        };
         let _ = writeln!(s, "{status} {}  {}", r.case, r.what);
         for m in &r.mismatches {
-            let _ = writeln!(s, "       {}\n       - expected: {}\n       + got:      {}", m.check, m.expected, m.got);
+            let _ = writeln!(
+                s,
+                "       {}\n       - expected: {}\n       + got:      {}",
+                m.check, m.expected, m.got
+            );
         }
     }
     let failed = results.iter().filter(|r| !r.mismatches.is_empty()).count();
@@ -83,21 +101,42 @@ pub fn text_report(results: &[CaseResult]) -> String {
 }
 
 fn xml_escape(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
 }
 
 /// JUnit XML for CI.
 #[must_use]
 pub fn junit(results: &[CaseResult]) -> String {
     let failed = results.iter().filter(|r| !r.mismatches.is_empty()).count();
-    let mut s = format!("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite name=\"solsim-regress\" tests=\"{}\" failures=\"{failed}\">\n", results.len());
+    let mut s = format!(
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite name=\"solsim-regress\" tests=\"{}\" failures=\"{failed}\">\n",
+        results.len()
+    );
     for r in results {
-        let _ = write!(s, "  <testcase classname=\"{}\" name=\"{}\" time=\"{:.3}\"", xml_escape(&r.scenario.display().to_string()), xml_escape(&format!("{} {}", r.case, r.what)), r.seconds);
+        let _ = write!(
+            s,
+            "  <testcase classname=\"{}\" name=\"{}\" time=\"{:.3}\"",
+            xml_escape(&r.scenario.display().to_string()),
+            xml_escape(&format!("{} {}", r.case, r.what)),
+            r.seconds
+        );
         if r.mismatches.is_empty() {
             s.push_str("/>\n");
         } else {
-            let body: Vec<String> = r.mismatches.iter().map(|m| format!("{}: expected {}, got {}", m.check, m.expected, m.got)).collect();
-            let _ = writeln!(s, ">\n    <failure message=\"{}\">{}</failure>\n  </testcase>", xml_escape(&body[0]), xml_escape(&body.join("\n")));
+            let body: Vec<String> = r
+                .mismatches
+                .iter()
+                .map(|m| format!("{}: expected {}, got {}", m.check, m.expected, m.got))
+                .collect();
+            let _ = writeln!(
+                s,
+                ">\n    <failure message=\"{}\">{}</failure>\n  </testcase>",
+                xml_escape(&body[0]),
+                xml_escape(&body.join("\n"))
+            );
         }
     }
     s.push_str("</testsuite>\n");

@@ -40,9 +40,15 @@ pub fn run_json(scenario: &Scenario, outcome: &CampaignOutcome, legs: &[LegClear
 
 /// Write `bytes` to `path` atomically.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
     std::fs::create_dir_all(dir)?;
-    let file_name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| "out".into());
+    let file_name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "out".into());
     let tmp = dir.join(format!(".{file_name}.tmp-{}", std::process::id()));
     let result = (|| {
         let mut f = std::fs::File::create(&tmp)?;
@@ -83,9 +89,14 @@ pub fn sols_csv(outcome: &CampaignOutcome) -> String {
             r.start_uncertainty_m,
             r.end_uncertainty_m,
             r.fault.as_ref().map_or("", |f| f.kind.name()),
-            r.fault.as_ref().map_or(String::new(), |f| format!("{:.3}", f.after_m)),
-            r.fault.as_ref().map_or(String::new(), |f| format!("{:.3}", f.uncertainty_m)),
-            r.passage_clearance_m.map_or(String::new(), |c| format!("{c:.3}")),
+            r.fault
+                .as_ref()
+                .map_or(String::new(), |f| format!("{:.3}", f.after_m)),
+            r.fault
+                .as_ref()
+                .map_or(String::new(), |f| format!("{:.3}", f.uncertainty_m)),
+            r.passage_clearance_m
+                .map_or(String::new(), |c| format!("{c:.3}")),
             r.ground_localization.is_some(),
             onboard,
             r.end_position_m[0],
@@ -101,7 +112,11 @@ pub fn sols_csv(outcome: &CampaignOutcome) -> String {
 }
 
 fn csv_quote(s: &str) -> String {
-    if s.contains([',', '"', '\n']) { format!("\"{}\"", s.replace('"', "\"\"")) } else { s.to_string() }
+    if s.contains([',', '"', '\n']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
 }
 
 /// GeoJSON of one run: the driven path per sol (LineString, estimated positions) and the sol-end
@@ -153,12 +168,23 @@ pub fn run_geojson(scenario: &Scenario, outcome: &CampaignOutcome) -> Value {
 }
 
 /// Write the JSON, CSV and GeoJSON of one run into `dir`; returns the paths written.
-pub fn write_run_files(dir: &Path, scenario: &Scenario, outcome: &CampaignOutcome, legs: &[LegClearance]) -> std::io::Result<Vec<PathBuf>> {
+pub fn write_run_files(
+    dir: &Path,
+    scenario: &Scenario,
+    outcome: &CampaignOutcome,
+    legs: &[LegClearance],
+) -> std::io::Result<Vec<PathBuf>> {
     let stem = format!("{}.{}", scenario.name, outcome.strategy);
     let files = [
-        (dir.join(format!("{stem}.json")), pretty(&run_json(scenario, outcome, legs))),
+        (
+            dir.join(format!("{stem}.json")),
+            pretty(&run_json(scenario, outcome, legs)),
+        ),
         (dir.join(format!("{stem}.sols.csv")), sols_csv(outcome)),
-        (dir.join(format!("{stem}.geojson")), pretty(&run_geojson(scenario, outcome))),
+        (
+            dir.join(format!("{stem}.geojson")),
+            pretty(&run_geojson(scenario, outcome)),
+        ),
     ];
     for (path, text) in &files {
         write_atomic(path, text.as_bytes())?;
@@ -169,7 +195,8 @@ pub fn write_run_files(dir: &Path, scenario: &Scenario, outcome: &CampaignOutcom
 /// Pretty JSON with a trailing newline.
 #[must_use]
 pub fn pretty(v: &Value) -> String {
-    let mut s = serde_json::to_string_pretty(v).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"));
+    let mut s =
+        serde_json::to_string_pretty(v).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"));
     s.push('\n');
     s
 }
@@ -178,15 +205,37 @@ pub fn pretty(v: &Value) -> String {
 #[must_use]
 pub fn sol_table(outcome: &CampaignOutcome) -> String {
     let mut s = format!("strategy: {}\n", outcome.strategy);
-    let _ = writeln!(s, "{:>5}  {:>10}  {:>11}  {:>11}  {:>11}  {:>12}  {:<28}  note", "sol", "distance_m", "start_r_m", "end_r_m", "d_novo_m", "passage_m", "fault");
+    let _ = writeln!(
+        s,
+        "{:>5}  {:>10}  {:>11}  {:>11}  {:>11}  {:>12}  {:<28}  note",
+        "sol", "distance_m", "start_r_m", "end_r_m", "d_novo_m", "passage_m", "fault"
+    );
     for r in &outcome.sols {
-        let fault = r.fault.as_ref().map_or(String::new(), |f| format!("{} after {:.1} m at r={:.2} m", f.kind.name(), f.after_m, f.uncertainty_m));
-        let mut note = r.skip_reason.clone().map(|s| format!("skipped: {s}")).unwrap_or_default();
+        let fault = r.fault.as_ref().map_or(String::new(), |f| {
+            format!(
+                "{} after {:.1} m at r={:.2} m",
+                f.kind.name(),
+                f.after_m,
+                f.uncertainty_m
+            )
+        });
+        let mut note = r
+            .skip_reason
+            .clone()
+            .map(|s| format!("skipped: {s}"))
+            .unwrap_or_default();
         if r.ground_localization.is_some() {
             note = format!("ground-localized; {note}");
         }
         if let Some(l) = &r.onboard_localization {
-            note.push_str(&if l.applied { format!("onboard loc → r={:.2} m", l.uncertainty_after_m) } else { format!("onboard loc rejected ({})", l.reason.as_deref().unwrap_or("")) });
+            note.push_str(&if l.applied {
+                format!("onboard loc → r={:.2} m", l.uncertainty_after_m)
+            } else {
+                format!(
+                    "onboard loc rejected ({})",
+                    l.reason.as_deref().unwrap_or("")
+                )
+            });
         }
         if r.reached_goal {
             note.push_str(" goal reached");
@@ -199,7 +248,8 @@ pub fn sol_table(outcome: &CampaignOutcome) -> String {
             r.start_uncertainty_m,
             r.end_uncertainty_m,
             r.d_novo_m,
-            r.passage_clearance_m.map_or("-".into(), |c| format!("{c:.2}")),
+            r.passage_clearance_m
+                .map_or("-".into(), |c| format!("{c:.2}")),
             fault,
             note.trim()
         );
@@ -211,7 +261,8 @@ pub fn sol_table(outcome: &CampaignOutcome) -> String {
         t.distance_m,
         t.drive_sols,
         t.sols,
-        t.sols_to_goal.map_or("not reached".into(), |n| n.to_string()),
+        t.sols_to_goal
+            .map_or("not reached".into(), |n| n.to_string()),
         t.no_path_faults,
         t.faults,
         t.max_uncertainty_m,
@@ -230,11 +281,24 @@ pub fn compare_table(outcomes: &[CampaignOutcome]) -> String {
     let _ = writeln!(
         s,
         "{:<18}  {:>11}  {:>10}  {:>10}  {:>11}  {:>7}  {:>7}  {:>9}  {:>16}  {:>12}",
-        "strategy", "sols_to_goal", "drive_sols", "distance_m", "m_per_drive", "NO_PATH", "faults", "max_r_m", "onboard_loc a/r", "ground_loc"
+        "strategy",
+        "sols_to_goal",
+        "drive_sols",
+        "distance_m",
+        "m_per_drive",
+        "NO_PATH",
+        "faults",
+        "max_r_m",
+        "onboard_loc a/r",
+        "ground_loc"
     );
     for o in outcomes {
         let t = &o.totals;
-        let per = if t.drive_sols > 0 { t.distance_m / f64::from(t.drive_sols) } else { 0.0 };
+        let per = if t.drive_sols > 0 {
+            t.distance_m / f64::from(t.drive_sols)
+        } else {
+            0.0
+        };
         let _ = writeln!(
             s,
             "{:<18}  {:>11}  {:>10}  {:>10.1}  {:>11.1}  {:>7}  {:>7}  {:>9.2}  {:>16}  {:>12}",
@@ -246,7 +310,10 @@ pub fn compare_table(outcomes: &[CampaignOutcome]) -> String {
             t.no_path_faults,
             t.faults,
             t.max_uncertainty_m,
-            format!("{}/{}", t.onboard_localizations_applied, t.onboard_localizations_rejected),
+            format!(
+                "{}/{}",
+                t.onboard_localizations_applied, t.onboard_localizations_rejected
+            ),
             t.ground_localizations
         );
     }

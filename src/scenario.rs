@@ -175,36 +175,67 @@ struct Check<'a> {
 
 impl Check<'_> {
     fn finite(&self, field: &str, v: f64) -> Result<f64, ScenarioError> {
-        if v.is_finite() { Ok(v) } else { Err(ScenarioError::field(self.path, field, "a finite number", v)) }
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(ScenarioError::field(self.path, field, "a finite number", v))
+        }
     }
     fn positive(&self, field: &str, v: f64, unit: &str) -> Result<f64, ScenarioError> {
         if v.is_finite() && v > 0.0 {
             Ok(v)
         } else {
-            Err(ScenarioError::field(self.path, field, format!("a positive number of {unit}"), v))
+            Err(ScenarioError::field(
+                self.path,
+                field,
+                format!("a positive number of {unit}"),
+                v,
+            ))
         }
     }
     fn non_negative(&self, field: &str, v: f64, unit: &str) -> Result<f64, ScenarioError> {
         if v.is_finite() && v >= 0.0 {
             Ok(v)
         } else {
-            Err(ScenarioError::field(self.path, field, format!("a non-negative number of {unit}"), v))
+            Err(ScenarioError::field(
+                self.path,
+                field,
+                format!("a non-negative number of {unit}"),
+                v,
+            ))
         }
     }
     fn fraction(&self, field: &str, v: f64) -> Result<f64, ScenarioError> {
         if (0.0..=1.0).contains(&v) {
             Ok(v)
         } else {
-            Err(ScenarioError::field(self.path, field, "a fraction between 0 and 1", v))
+            Err(ScenarioError::field(
+                self.path,
+                field,
+                "a fraction between 0 and 1",
+                v,
+            ))
         }
     }
     fn lmst(&self, field: &str, v: &str) -> Result<SolSeconds, ScenarioError> {
-        SolSeconds::parse_lmst(v)
-            .ok_or_else(|| ScenarioError::field(self.path, field, "a local solar time \"HH:MM\" between 00:00 and 24:00", format!("{v:?}")))
+        SolSeconds::parse_lmst(v).ok_or_else(|| {
+            ScenarioError::field(
+                self.path,
+                field,
+                "a local solar time \"HH:MM\" between 00:00 and 24:00",
+                format!("{v:?}"),
+            )
+        })
     }
 }
 
-fn per_terrain(c: &Check<'_>, field: &str, raw: Option<RawPerTerrain>, default: PerTerrain, frac: bool) -> Result<PerTerrain, ScenarioError> {
+fn per_terrain(
+    c: &Check<'_>,
+    field: &str,
+    raw: Option<RawPerTerrain>,
+    default: PerTerrain,
+    frac: bool,
+) -> Result<PerTerrain, ScenarioError> {
     let Some(raw) = raw else { return Ok(default) };
     let one = |name: &str, v: Option<f64>, d: f64| -> Result<f64, ScenarioError> {
         let f = format!("{field}.{name}");
@@ -225,11 +256,24 @@ fn per_terrain(c: &Check<'_>, field: &str, raw: Option<RawPerTerrain>, default: 
 impl Scenario {
     /// Read, validate and resolve a scenario file (maps and zones included).
     pub fn load(path: &Path) -> Result<Self, ScenarioError> {
-        let bytes = std::fs::read(path).map_err(|source| ScenarioError::Io { path: path.to_path_buf(), source })?;
-        let text = String::from_utf8(bytes.clone())
-            .map_err(|e| ScenarioError::field(path, "(file)", "UTF-8 text", format!("invalid byte at offset {}", e.utf8_error().valid_up_to())))?;
-        let raw: RawScenario = toml::from_str(&text).map_err(|e| ScenarioError::from_toml(path, &text, &e))?;
-        let sha256 = Sha256::digest(&bytes).iter().map(|b| format!("{b:02x}")).collect();
+        let bytes = std::fs::read(path).map_err(|source| ScenarioError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        let text = String::from_utf8(bytes.clone()).map_err(|e| {
+            ScenarioError::field(
+                path,
+                "(file)",
+                "UTF-8 text",
+                format!("invalid byte at offset {}", e.utf8_error().valid_up_to()),
+            )
+        })?;
+        let raw: RawScenario =
+            toml::from_str(&text).map_err(|e| ScenarioError::from_toml(path, &text, &e))?;
+        let sha256 = Sha256::digest(&bytes)
+            .iter()
+            .map(|b| format!("{b:02x}"))
+            .collect();
         Self::resolve(path, raw, sha256)
     }
 
@@ -237,57 +281,143 @@ impl Scenario {
         let c = Check { path };
         let base = path.parent().unwrap_or(Path::new("."));
         if raw.name.trim().is_empty() || raw.name.contains(['/', '\\']) {
-            return Err(ScenarioError::field(path, "name", "a non-empty name without path separators", format!("{:?}", raw.name)));
+            return Err(ScenarioError::field(
+                path,
+                "name",
+                "a non-empty name without path separators",
+                format!("{:?}", raw.name),
+            ));
         }
 
         // Rover, uncertainty, localizer, operations.
         let d = RoverParams::default();
         let r = raw.rover;
         let rover = RoverParams {
-            drive_rate_m_per_h: r.drive_rate_m_per_h.map_or(Ok(d.drive_rate_m_per_h), |v| c.positive("rover.drive_rate_m_per_h", v, "metres per hour"))?,
-            step_m: r.step_m.map_or(Ok(d.step_m), |v| c.positive("rover.step_m", v, "metres"))?,
-            waypoint_tolerance_m: r.waypoint_tolerance_m.map_or(Ok(d.waypoint_tolerance_m), |v| c.positive("rover.waypoint_tolerance_m", v, "metres"))?,
+            drive_rate_m_per_h: r.drive_rate_m_per_h.map_or(Ok(d.drive_rate_m_per_h), |v| {
+                c.positive("rover.drive_rate_m_per_h", v, "metres per hour")
+            })?,
+            step_m: r
+                .step_m
+                .map_or(Ok(d.step_m), |v| c.positive("rover.step_m", v, "metres"))?,
+            waypoint_tolerance_m: r
+                .waypoint_tolerance_m
+                .map_or(Ok(d.waypoint_tolerance_m), |v| {
+                    c.positive("rover.waypoint_tolerance_m", v, "metres")
+                })?,
             vo_success: per_terrain(&c, "rover.vo_success", r.vo_success, d.vo_success, true)?,
-            slip_fraction: per_terrain(&c, "rover.slip_fraction", r.slip_fraction, d.slip_fraction, true)?,
-            terrain_cost: per_terrain(&c, "rover.terrain_cost", r.terrain_cost, d.terrain_cost, false)?,
-            vo_noise_fraction: r.vo_noise_fraction.map_or(Ok(d.vo_noise_fraction), |v| c.fraction("rover.vo_noise_fraction", v))?,
-            heading_sigma_deg: r.heading_sigma_deg.map_or(Ok(d.heading_sigma_deg), |v| c.non_negative("rover.heading_sigma_deg", v, "degrees"))?,
-            edge_buffer_m: r.edge_buffer_m.map_or(Ok(d.edge_buffer_m), |v| c.non_negative("rover.edge_buffer_m", v, "metres"))?,
+            slip_fraction: per_terrain(
+                &c,
+                "rover.slip_fraction",
+                r.slip_fraction,
+                d.slip_fraction,
+                true,
+            )?,
+            terrain_cost: per_terrain(
+                &c,
+                "rover.terrain_cost",
+                r.terrain_cost,
+                d.terrain_cost,
+                false,
+            )?,
+            vo_noise_fraction: r.vo_noise_fraction.map_or(Ok(d.vo_noise_fraction), |v| {
+                c.fraction("rover.vo_noise_fraction", v)
+            })?,
+            heading_sigma_deg: r.heading_sigma_deg.map_or(Ok(d.heading_sigma_deg), |v| {
+                c.non_negative("rover.heading_sigma_deg", v, "degrees")
+            })?,
+            edge_buffer_m: r.edge_buffer_m.map_or(Ok(d.edge_buffer_m), |v| {
+                c.non_negative("rover.edge_buffer_m", v, "metres")
+            })?,
         };
         let gd = GridParams::default();
         let grid_params = GridParams {
-            resolution_m: raw.grid.resolution_m.map_or(Ok(gd.resolution_m), |v| c.positive("grid.resolution_m", v, "metres"))?,
-            footprint_radius_m: r.footprint_radius_m.map_or(Ok(gd.footprint_radius_m), |v| c.non_negative("rover.footprint_radius_m", v, "metres"))?,
-            max_slope_deg: raw.grid.max_slope_deg.map_or(Ok(gd.max_slope_deg), |v| c.positive("grid.max_slope_deg", v, "degrees"))?,
+            resolution_m: raw.grid.resolution_m.map_or(Ok(gd.resolution_m), |v| {
+                c.positive("grid.resolution_m", v, "metres")
+            })?,
+            footprint_radius_m: r
+                .footprint_radius_m
+                .map_or(Ok(gd.footprint_radius_m), |v| {
+                    c.non_negative("rover.footprint_radius_m", v, "metres")
+                })?,
+            max_slope_deg: raw.grid.max_slope_deg.map_or(Ok(gd.max_slope_deg), |v| {
+                c.positive("grid.max_slope_deg", v, "degrees")
+            })?,
         };
         let ud = UncertaintyModel::default();
         let model = UncertaintyModel {
-            k_vo: raw.uncertainty.k_vo.map_or(Ok(ud.k_vo), |v| c.non_negative("uncertainty.k_vo", v, "metres per metre"))?,
-            k_novo: raw.uncertainty.k_novo.map_or(Ok(ud.k_novo), |v| c.non_negative("uncertainty.k_novo", v, "metres per metre"))?,
-            initial_margin_m: raw.uncertainty.initial_margin_m.map_or(Ok(ud.initial_margin_m), |v| c.non_negative("uncertainty.initial_margin_m", v, "metres"))?,
+            k_vo: raw.uncertainty.k_vo.map_or(Ok(ud.k_vo), |v| {
+                c.non_negative("uncertainty.k_vo", v, "metres per metre")
+            })?,
+            k_novo: raw.uncertainty.k_novo.map_or(Ok(ud.k_novo), |v| {
+                c.non_negative("uncertainty.k_novo", v, "metres per metre")
+            })?,
+            initial_margin_m: raw
+                .uncertainty
+                .initial_margin_m
+                .map_or(Ok(ud.initial_margin_m), |v| {
+                    c.non_negative("uncertainty.initial_margin_m", v, "metres")
+                })?,
         };
         let ld = StatisticalLocalizer::default();
         let l = raw.onboard_localization;
         let localizer = StatisticalLocalizer {
-            mean_error_m: l.mean_error_m.map_or(Ok(ld.mean_error_m), |v| c.positive("onboard_localization.mean_error_m", v, "metres"))?,
-            p99_error_m: l.p99_error_m.map_or(Ok(ld.p99_error_m), |v| c.positive("onboard_localization.p99_error_m", v, "metres"))?,
-            failure_rate: l.failure_rate.map_or(Ok(ld.failure_rate), |v| c.fraction("onboard_localization.failure_rate", v))?,
-            reported_sigma_m: l.reported_sigma_m.map_or(Ok(ld.reported_sigma_m), |v| c.non_negative("onboard_localization.reported_sigma_m", v, "metres"))?,
+            mean_error_m: l.mean_error_m.map_or(Ok(ld.mean_error_m), |v| {
+                c.positive("onboard_localization.mean_error_m", v, "metres")
+            })?,
+            p99_error_m: l.p99_error_m.map_or(Ok(ld.p99_error_m), |v| {
+                c.positive("onboard_localization.p99_error_m", v, "metres")
+            })?,
+            failure_rate: l.failure_rate.map_or(Ok(ld.failure_rate), |v| {
+                c.fraction("onboard_localization.failure_rate", v)
+            })?,
+            reported_sigma_m: l.reported_sigma_m.map_or(Ok(ld.reported_sigma_m), |v| {
+                c.non_negative("onboard_localization.reported_sigma_m", v, "metres")
+            })?,
         };
         if localizer.p99_error_m <= localizer.mean_error_m * 1.05 {
-            return Err(ScenarioError::field(path, "onboard_localization.p99_error_m", format!("more than 1.05 × mean_error_m ({} m)", localizer.mean_error_m), localizer.p99_error_m));
+            return Err(ScenarioError::field(
+                path,
+                "onboard_localization.p99_error_m",
+                format!(
+                    "more than 1.05 × mean_error_m ({} m)",
+                    localizer.mean_error_m
+                ),
+                localizer.p99_error_m,
+            ));
         }
-        let operator_margin_m = l.operator_margin_m.map_or(Ok(DEFAULT_OPERATOR_MARGIN_M), |v| c.non_negative("onboard_localization.operator_margin_m", v, "metres"))?;
+        let operator_margin_m = l
+            .operator_margin_m
+            .map_or(Ok(DEFAULT_OPERATOR_MARGIN_M), |v| {
+                c.non_negative("onboard_localization.operator_margin_m", v, "metres")
+            })?;
         let ops = raw.operations;
-        let drive_start = c.lmst("operations.drive_start_lmst", ops.drive_start_lmst.as_deref().unwrap_or(DEFAULT_DRIVE_START))?;
-        let drive_end = c.lmst("operations.drive_end_lmst", ops.drive_end_lmst.as_deref().unwrap_or(DEFAULT_DRIVE_END))?;
+        let drive_start = c.lmst(
+            "operations.drive_start_lmst",
+            ops.drive_start_lmst
+                .as_deref()
+                .unwrap_or(DEFAULT_DRIVE_START),
+        )?;
+        let drive_end = c.lmst(
+            "operations.drive_end_lmst",
+            ops.drive_end_lmst.as_deref().unwrap_or(DEFAULT_DRIVE_END),
+        )?;
         if drive_end <= drive_start {
-            return Err(ScenarioError::field(path, "operations.drive_end_lmst", format!("a time after drive_start_lmst ({})", drive_start.lmst()), drive_end.lmst()));
+            return Err(ScenarioError::field(
+                path,
+                "operations.drive_end_lmst",
+                format!("a time after drive_start_lmst ({})", drive_start.lmst()),
+                drive_end.lmst(),
+            ));
         }
 
         // Calendar.
         if raw.sols.is_empty() {
-            return Err(ScenarioError::field(path, "sols", "at least one [[sols]] entry", "none"));
+            return Err(ScenarioError::field(
+                path,
+                "sols",
+                "at least one [[sols]] entry",
+                "none",
+            ));
         }
         let mut sols = Vec::with_capacity(raw.sols.len());
         let mut notes = Vec::new();
@@ -295,42 +425,90 @@ impl Scenario {
         for (i, s) in raw.sols.iter().enumerate() {
             let f = |name: &str| format!("sols[{i}].{name}");
             if i > 0 && s.sol != raw.sols[i - 1].sol + 1 {
-                return Err(ScenarioError::field(path, f("sol"), format!("sol {} (sols are consecutive)", raw.sols[i - 1].sol + 1), s.sol));
+                return Err(ScenarioError::field(
+                    path,
+                    f("sol"),
+                    format!("sol {} (sols are consecutive)", raw.sols[i - 1].sol + 1),
+                    s.sol,
+                ));
             }
             let uplink = s.uplink.unwrap_or(true);
             if i == 0 && !uplink {
-                return Err(ScenarioError::field(path, f("uplink"), "true (the first sol starts a plan)", "false"));
+                return Err(ScenarioError::field(
+                    path,
+                    f("uplink"),
+                    "true (the first sol starts a plan)",
+                    "false",
+                ));
             }
             let historic_planning = match s.historic_planning.as_deref() {
                 None => None,
                 Some("ground") => Some(Planning::Ground),
                 Some("extension") => Some(Planning::Extension),
-                Some(other) => return Err(ScenarioError::field(path, f("historic_planning"), "\"ground\" or \"extension\"", format!("{other:?}"))),
+                Some(other) => {
+                    return Err(ScenarioError::field(
+                        path,
+                        f("historic_planning"),
+                        "\"ground\" or \"extension\"",
+                        format!("{other:?}"),
+                    ));
+                }
             };
             if historic_planning.is_some() && !uplink {
-                return Err(ScenarioError::field(path, f("historic_planning"), "only on a sol with an uplink", "a sol without one"));
+                return Err(ScenarioError::field(
+                    path,
+                    f("historic_planning"),
+                    "only on a sol with an uplink",
+                    "a sol without one",
+                ));
             }
             let historic = match (s.historic_distance_m, s.historic_novo_m) {
                 (None, None) if s.historic_fault.is_none() => None,
                 (Some(dist), novo) => {
                     let dist = c.non_negative(&f("historic_distance_m"), dist, "metres")?;
-                    let novo = c.non_negative(&f("historic_novo_m"), novo.unwrap_or(0.0), "metres")?;
+                    let novo =
+                        c.non_negative(&f("historic_novo_m"), novo.unwrap_or(0.0), "metres")?;
                     if novo > dist {
-                        return Err(ScenarioError::field(path, f("historic_novo_m"), format!("at most historic_distance_m ({dist} m)"), novo));
+                        return Err(ScenarioError::field(
+                            path,
+                            f("historic_novo_m"),
+                            format!("at most historic_distance_m ({dist} m)"),
+                            novo,
+                        ));
                     }
                     let ended_in_fault = match s.historic_fault.as_deref() {
                         None => false,
                         Some("NO_PATH" | "KEEP_OUT" | "KEEP_IN") => true,
-                        Some(other) => return Err(ScenarioError::field(path, f("historic_fault"), "\"NO_PATH\", \"KEEP_OUT\" or \"KEEP_IN\"", format!("{other:?}"))),
+                        Some(other) => {
+                            return Err(ScenarioError::field(
+                                path,
+                                f("historic_fault"),
+                                "\"NO_PATH\", \"KEEP_OUT\" or \"KEEP_IN\"",
+                                format!("{other:?}"),
+                            ));
+                        }
                     };
-                    Some(HistoricSol { distance_m: dist, novo_m: novo, ended_in_fault })
+                    Some(HistoricSol {
+                        distance_m: dist,
+                        novo_m: novo,
+                        ended_in_fault,
+                    })
                 }
                 (None, _) => {
-                    return Err(ScenarioError::field(path, f("historic_distance_m"), "a distance whenever historic_novo_m or historic_fault is given", "nothing"));
+                    return Err(ScenarioError::field(
+                        path,
+                        f("historic_distance_m"),
+                        "a distance whenever historic_novo_m or historic_fault is given",
+                        "nothing",
+                    ));
                 }
             };
             has_history |= historic.is_some();
-            let downlink_lmst = s.downlink_lmst.as_deref().map(|t| c.lmst(&f("downlink_lmst"), t)).transpose()?;
+            let downlink_lmst = s
+                .downlink_lmst
+                .as_deref()
+                .map(|t| c.lmst(&f("downlink_lmst"), t))
+                .transpose()?;
             if !s.note.is_empty() {
                 notes.push((s.sol, s.note.clone()));
             }
@@ -345,10 +523,20 @@ impl Scenario {
                 historic,
             });
         }
-        let calendar = Calendar { sols, drive_start, drive_end };
+        let calendar = Calendar {
+            sols,
+            drive_start,
+            drive_end,
+        };
 
         // Maps, zones, grid, route.
-        let resolve = |p: &Path| if p.is_absolute() { p.to_path_buf() } else { base.join(p) };
+        let resolve = |p: &Path| {
+            if p.is_absolute() {
+                p.to_path_buf()
+            } else {
+                base.join(p)
+            }
+        };
         let georef = match (raw.map.resolution_m_per_px, raw.map.origin_m) {
             (None, None) => None,
             (Some(res), Some(o)) => {
@@ -357,22 +545,65 @@ impl Scenario {
                 c.finite("map.origin_m[1]", o[1])?;
                 Some(GeoTransform::new(o[0], o[1], res))
             }
-            (Some(_), None) => return Err(ScenarioError::field(path, "map.origin_m", "[x, y] of the north-west corner, given with resolution_m_per_px", "nothing")),
-            (None, Some(_)) => return Err(ScenarioError::field(path, "map.resolution_m_per_px", "metres per pixel, given with origin_m", "nothing")),
+            (Some(_), None) => {
+                return Err(ScenarioError::field(
+                    path,
+                    "map.origin_m",
+                    "[x, y] of the north-west corner, given with resolution_m_per_px",
+                    "nothing",
+                ));
+            }
+            (None, Some(_)) => {
+                return Err(ScenarioError::field(
+                    path,
+                    "map.resolution_m_per_px",
+                    "metres per pixel, given with origin_m",
+                    "nothing",
+                ));
+            }
         };
         c.finite("map.dem_datum_m", raw.map.dem_datum_m)?;
-        for (field, p) in [("map.appearance", &raw.map.appearance), ("map.dem", &raw.map.dem), ("map.terrain", &raw.map.terrain), ("map.zones", &raw.map.zones)] {
+        for (field, p) in [
+            ("map.appearance", &raw.map.appearance),
+            ("map.dem", &raw.map.dem),
+            ("map.terrain", &raw.map.terrain),
+            ("map.zones", &raw.map.zones),
+        ] {
             let full = resolve(p);
             if !full.is_file() {
-                return Err(ScenarioError::field(path, field, "an existing file (paths are relative to the scenario file)", full.display()));
+                return Err(ScenarioError::field(
+                    path,
+                    field,
+                    "an existing file (paths are relative to the scenario file)",
+                    full.display(),
+                ));
             }
         }
-        let layers = MapLayers::load(&resolve(&raw.map.appearance), &resolve(&raw.map.dem), &resolve(&raw.map.terrain), raw.map.dem_datum_m, georef)
-            .map_err(|source| ScenarioError::Map { path: path.to_path_buf(), field: "map".into(), source })?;
-        let zones = ZoneSet::load(&resolve(&raw.map.zones)).map_err(|source| ScenarioError::Zones { path: path.to_path_buf(), source })?;
+        let layers = MapLayers::load(
+            &resolve(&raw.map.appearance),
+            &resolve(&raw.map.dem),
+            &resolve(&raw.map.terrain),
+            raw.map.dem_datum_m,
+            georef,
+        )
+        .map_err(|source| ScenarioError::Map {
+            path: path.to_path_buf(),
+            field: "map".into(),
+            source: Box::new(source),
+        })?;
+        let zones =
+            ZoneSet::load(&resolve(&raw.map.zones)).map_err(|source| ScenarioError::Zones {
+                path: path.to_path_buf(),
+                source: Box::new(source),
+            })?;
 
         if raw.route.waypoints.len() < 2 {
-            return Err(ScenarioError::field(path, "route.waypoints", "at least two waypoints (the start and a goal)", raw.route.waypoints.len()));
+            return Err(ScenarioError::field(
+                path,
+                "route.waypoints",
+                "at least two waypoints (the start and a goal)",
+                raw.route.waypoints.len(),
+            ));
         }
         let (x0, y0, x1, y1) = layers.dem.extent_m();
         for (i, w) in raw.route.waypoints.iter().enumerate() {
@@ -380,12 +611,22 @@ impl Scenario {
             c.finite(&format!("{field}[0]"), w[0])?;
             c.finite(&format!("{field}[1]"), w[1])?;
             if !layers.dem.contains_point(w[0], w[1]) {
-                return Err(ScenarioError::field(path, field, format!("a point on the map (x {x0:.1}..{x1:.1} m, y {y0:.1}..{y1:.1} m)"), format!("[{}, {}]", w[0], w[1])));
+                return Err(ScenarioError::field(
+                    path,
+                    field,
+                    format!("a point on the map (x {x0:.1}..{x1:.1} m, y {y0:.1}..{y1:.1} m)"),
+                    format!("[{}, {}]", w[0], w[1]),
+                ));
             }
         }
         let grid = PlanningGrid::build(&zones, &layers, &grid_params);
 
-        let expectations = raw.expect.into_iter().enumerate().map(|(i, e)| e.resolve(path, i, &calendar)).collect::<Result<Vec<_>, _>>()?;
+        let expectations = raw
+            .expect
+            .into_iter()
+            .enumerate()
+            .map(|(i, e)| e.resolve(path, i, &calendar))
+            .collect::<Result<Vec<_>, _>>()?;
 
         Ok(Scenario {
             path: path.to_path_buf(),
@@ -401,7 +642,9 @@ impl Scenario {
                 model,
                 localizer,
                 operator_margin_m,
-                post_drive_imaging_s: ops.post_drive_imaging_s.unwrap_or(DEFAULT_POST_DRIVE_IMAGING_S),
+                post_drive_imaging_s: ops
+                    .post_drive_imaging_s
+                    .unwrap_or(DEFAULT_POST_DRIVE_IMAGING_S),
                 max_extension_sols: ops.max_extension_sols.unwrap_or(DEFAULT_MAX_EXTENSION_SOLS),
                 grid,
             },
@@ -414,6 +657,9 @@ impl Scenario {
     /// The strategies that make sense for this scenario (`replay` only with historic data).
     #[must_use]
     pub fn strategies(&self) -> Vec<sim::Strategy> {
-        sim::Strategy::ALL.into_iter().filter(|s| *s != sim::Strategy::Replay || self.has_history).collect()
+        sim::Strategy::ALL
+            .into_iter()
+            .filter(|s| *s != sim::Strategy::Replay || self.has_history)
+            .collect()
     }
 }

@@ -25,24 +25,48 @@ fn stderr(o: &Output) -> String {
 fn compare_runs_the_main_job_and_writes_outputs() {
     let out = tempfile::tempdir().expect("tempdir");
     let o = solsim()
-        .args(["compare", scenario("rapid-traverse-379-409.toml").to_str().expect("utf8"), "--out"])
+        .args([
+            "compare",
+            scenario("rapid-traverse-379-409.toml")
+                .to_str()
+                .expect("utf8"),
+            "--out",
+        ])
         .arg(out.path())
         .output()
         .expect("runs");
     assert!(o.status.success(), "{}", stderr(&o));
     let text = String::from_utf8_lossy(&o.stdout);
-    for s in ["replay", "ground", "onboard", "extension", "extension+onboard", "NO_PATH", "max_r_m"] {
+    for s in [
+        "replay",
+        "ground",
+        "onboard",
+        "extension",
+        "extension+onboard",
+        "NO_PATH",
+        "max_r_m",
+    ] {
         assert!(text.contains(s), "compare output lacks {s}:\n{text}");
     }
-    for strategy in ["replay", "ground", "onboard", "extension", "extension+onboard"] {
+    for strategy in [
+        "replay",
+        "ground",
+        "onboard",
+        "extension",
+        "extension+onboard",
+    ] {
         for ext in ["json", "sols.csv", "geojson"] {
-            let f = out.path().join(format!("rapid-traverse-379-409.{strategy}.{ext}"));
+            let f = out
+                .path()
+                .join(format!("rapid-traverse-379-409.{strategy}.{ext}"));
             assert!(f.is_file(), "missing {}", f.display());
         }
     }
     // The JSON carries the documented fields.
-    let doc: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(out.path().join("rapid-traverse-379-409.replay.json")).expect("read")).expect("json");
+    let doc: serde_json::Value = serde_json::from_slice(
+        &std::fs::read(out.path().join("rapid-traverse-379-409.replay.json")).expect("read"),
+    )
+    .expect("json");
     assert_eq!(doc["strategy"], "replay");
     let sol = &doc["sols"][0];
     for key in ["sol", "distance_m", "end_uncertainty_m", "fault"] {
@@ -50,24 +74,56 @@ fn compare_runs_the_main_job_and_writes_outputs() {
     }
     assert!(doc["totals"]["distance_m"].as_f64().is_some());
     // GeoJSON: a FeatureCollection with drive lines and sol-end points carrying the ellipse.
-    let gj: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(out.path().join("rapid-traverse-379-409.onboard.geojson")).expect("read")).expect("json");
+    let gj: serde_json::Value = serde_json::from_slice(
+        &std::fs::read(out.path().join("rapid-traverse-379-409.onboard.geojson")).expect("read"),
+    )
+    .expect("json");
     assert_eq!(gj["type"], "FeatureCollection");
     let features = gj["features"].as_array().expect("features");
-    assert!(features.iter().any(|f| f["geometry"]["type"] == "LineString"));
-    assert!(features.iter().any(|f| f["properties"]["uncertainty_semi_major_m"].is_number()));
+    assert!(
+        features
+            .iter()
+            .any(|f| f["geometry"]["type"] == "LineString")
+    );
+    assert!(
+        features
+            .iter()
+            .any(|f| f["properties"]["uncertainty_semi_major_m"].is_number())
+    );
 }
 
 #[test]
 fn fault_json_has_kind_after_and_uncertainty() {
-    let o = solsim().args(["replay", "--json", "--no-files"]).arg(scenario("sol383-386.toml")).output().expect("runs");
+    let o = solsim()
+        .args(["replay", "--json", "--no-files"])
+        .arg(scenario("sol383-386.toml"))
+        .output()
+        .expect("runs");
     assert!(o.status.success(), "{}", stderr(&o));
     let doc: serde_json::Value = serde_json::from_slice(&o.stdout).expect("json");
-    let sol385 = doc["sols"].as_array().expect("sols").iter().find(|s| s["sol"] == 385).expect("sol 385");
+    let sol385 = doc["sols"]
+        .as_array()
+        .expect("sols")
+        .iter()
+        .find(|s| s["sol"] == 385)
+        .expect("sol 385");
     assert_eq!(sol385["fault"]["kind"], "NO_PATH");
-    assert!(sol385["fault"]["after_m"].as_f64().is_some_and(|m| (12.0..16.0).contains(&m)));
-    assert!(sol385["fault"]["uncertainty_m"].as_f64().is_some_and(|r| (26.8..27.0).contains(&r)));
-    let sol386 = doc["sols"].as_array().expect("sols").iter().find(|s| s["sol"] == 386).expect("sol 386");
+    assert!(
+        sol385["fault"]["after_m"]
+            .as_f64()
+            .is_some_and(|m| (12.0..16.0).contains(&m))
+    );
+    assert!(
+        sol385["fault"]["uncertainty_m"]
+            .as_f64()
+            .is_some_and(|r| (26.8..27.0).contains(&r))
+    );
+    let sol386 = doc["sols"]
+        .as_array()
+        .expect("sols")
+        .iter()
+        .find(|s| s["sol"] == 386)
+        .expect("sol 386");
     assert!(sol386["fault"].is_null());
 }
 
@@ -98,24 +154,45 @@ fn same_seed_gives_byte_identical_json_on_one_and_two_threads() {
 fn regress_passes_on_the_bundled_scenarios_and_writes_junit() {
     let dir = tempfile::tempdir().expect("tempdir");
     let junit = dir.path().join("junit.xml");
-    let o = solsim().arg("regress").arg(root().join("scenarios")).arg("--junit").arg(&junit).output().expect("runs");
+    let o = solsim()
+        .arg("regress")
+        .arg(root().join("scenarios"))
+        .arg("--junit")
+        .arg(&junit)
+        .output()
+        .expect("runs");
     let text = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success(), "{text}\n{}", stderr(&o));
     assert!(text.contains(" passed, 0 failed"), "{text}");
     let xml = std::fs::read_to_string(&junit).expect("junit written");
-    assert!(xml.contains("<testsuite") && xml.contains("failures=\"0\""), "{xml}");
+    assert!(
+        xml.contains("<testsuite") && xml.contains("failures=\"0\""),
+        "{xml}"
+    );
 }
 
 #[test]
 fn regress_exits_1_with_a_diff_on_a_mismatch() {
     let dir = tempfile::tempdir().expect("tempdir");
     let text = std::fs::read_to_string(scenario("sol717-719.toml")).expect("read");
-    let text = rebase(&text).replace("end_uncertainty_m = [32.82, 33.02]", "end_uncertainty_m = [10.0, 11.0]");
+    let text = rebase(&text).replace(
+        "end_uncertainty_m = [32.82, 33.02]",
+        "end_uncertainty_m = [10.0, 11.0]",
+    );
     std::fs::write(dir.path().join("broken.toml"), text).expect("write");
-    let o = solsim().arg("regress").arg(dir.path()).output().expect("runs");
+    let o = solsim()
+        .arg("regress")
+        .arg(dir.path())
+        .output()
+        .expect("runs");
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     let out = String::from_utf8_lossy(&o.stdout);
-    assert!(out.contains("FAIL") && out.contains("expected: [10, 11]") && out.contains("+ got:      32.920"), "{out}");
+    assert!(
+        out.contains("FAIL")
+            && out.contains("expected: [10, 11]")
+            && out.contains("+ got:      32.920"),
+        "{out}"
+    );
 }
 
 /// Point the relative map and zone paths of a bundled scenario at the repository, so a copy in a
@@ -127,7 +204,10 @@ fn rebase(text: &str) -> String {
 }
 
 /// Write a modified copy of a bundled scenario and run `validate` on it.
-fn validate_modified(base: &str, edit: impl Fn(String) -> String) -> (Output, PathBuf, tempfile::TempDir) {
+fn validate_modified(
+    base: &str,
+    edit: impl Fn(String) -> String,
+) -> (Output, PathBuf, tempfile::TempDir) {
     let dir = tempfile::tempdir().expect("tempdir");
     let text = rebase(&std::fs::read_to_string(scenario(base)).expect("read"));
     let path = dir.path().join("case.toml");
@@ -140,7 +220,11 @@ fn assert_bad_input(o: &Output, must_contain: &[&str]) {
     let err = stderr(o);
     assert_eq!(o.status.code(), Some(2), "exit code; stderr: {err}");
     assert!(!err.contains("panicked"), "panic: {err}");
-    assert_eq!(err.trim_end().lines().count(), 1, "one line expected:\n{err}");
+    assert_eq!(
+        err.trim_end().lines().count(),
+        1,
+        "one line expected:\n{err}"
+    );
     assert!(err.starts_with("error: "), "{err}");
     for s in must_contain {
         assert!(err.contains(s), "stderr lacks {s:?}:\n{err}");
@@ -149,55 +233,103 @@ fn assert_bad_input(o: &Output, must_contain: &[&str]) {
 
 #[test]
 fn missing_scenario_file() {
-    let o = solsim().args(["run", "no/such/scenario.toml"]).output().expect("runs");
+    let o = solsim()
+        .args(["run", "no/such/scenario.toml"])
+        .output()
+        .expect("runs");
     assert_bad_input(&o, &["no/such/scenario.toml", "cannot read"]);
 }
 
 #[test]
 fn unknown_toml_field_names_the_line() {
-    let (o, path, _d) = validate_modified("sol383-386.toml", |t| t.replace("drive_rate_m_per_h = 100.0", "drive_rate_m_per_hr = 100.0"));
-    assert_bad_input(&o, &[path.to_str().expect("utf8"), "drive_rate_m_per_hr", "unknown field"]);
+    let (o, path, _d) = validate_modified("sol383-386.toml", |t| {
+        t.replace("drive_rate_m_per_h = 100.0", "drive_rate_m_per_hr = 100.0")
+    });
+    assert_bad_input(
+        &o,
+        &[
+            path.to_str().expect("utf8"),
+            "drive_rate_m_per_hr",
+            "unknown field",
+        ],
+    );
 }
 
 #[test]
 fn wrong_type_names_the_line() {
-    let (o, path, _d) = validate_modified("sol383-386.toml", |t| t.replace("step_m = 2.0", "step_m = \"two\""));
+    let (o, path, _d) = validate_modified("sol383-386.toml", |t| {
+        t.replace("step_m = 2.0", "step_m = \"two\"")
+    });
     assert_bad_input(&o, &[path.to_str().expect("utf8"), "step_m"]);
 }
 
 #[test]
 fn negative_rate_is_rejected() {
-    let (o, path, _d) = validate_modified("sol383-386.toml", |t| t.replace("drive_rate_m_per_h = 100.0", "drive_rate_m_per_h = -100.0"));
-    assert_bad_input(&o, &[path.to_str().expect("utf8"), "rover.drive_rate_m_per_h", "positive", "-100"]);
+    let (o, path, _d) = validate_modified("sol383-386.toml", |t| {
+        t.replace("drive_rate_m_per_h = 100.0", "drive_rate_m_per_h = -100.0")
+    });
+    assert_bad_input(
+        &o,
+        &[
+            path.to_str().expect("utf8"),
+            "rover.drive_rate_m_per_h",
+            "positive",
+            "-100",
+        ],
+    );
 }
 
 #[test]
 fn nan_is_rejected() {
-    let (o, path, _d) = validate_modified("sol383-386.toml", |t| t.replace("k_vo = 0.05", "k_vo = nan"));
-    assert_bad_input(&o, &[path.to_str().expect("utf8"), "uncertainty.k_vo", "NaN"]);
+    let (o, path, _d) = validate_modified("sol383-386.toml", |t| {
+        t.replace("k_vo = 0.05", "k_vo = nan")
+    });
+    assert_bad_input(
+        &o,
+        &[path.to_str().expect("utf8"), "uncertainty.k_vo", "NaN"],
+    );
 }
 
 #[test]
 fn nan_waypoint_is_rejected() {
-    let (o, _path, _d) = validate_modified("sol383-386.toml", |t| t.replace("[[600.0, 60.0],", "[[nan, 60.0],"));
+    let (o, _path, _d) = validate_modified("sol383-386.toml", |t| {
+        t.replace("[[600.0, 60.0],", "[[nan, 60.0],")
+    });
     assert_bad_input(&o, &["route.waypoints[0][0]", "finite"]);
 }
 
 #[test]
 fn waypoint_off_the_map_is_rejected() {
-    let (o, path, _d) = validate_modified("sol383-386.toml", |t| t.replace("[600.0, 821.0]]", "[600.0, 5000.0]]"));
-    assert_bad_input(&o, &[path.to_str().expect("utf8"), "route.waypoints[4]", "a point on the map", "5000"]);
+    let (o, path, _d) = validate_modified("sol383-386.toml", |t| {
+        t.replace("[600.0, 821.0]]", "[600.0, 5000.0]]")
+    });
+    assert_bad_input(
+        &o,
+        &[
+            path.to_str().expect("utf8"),
+            "route.waypoints[4]",
+            "a point on the map",
+            "5000",
+        ],
+    );
 }
 
 #[test]
 fn negative_historic_distance_is_rejected() {
-    let (o, _p, _d) = validate_modified("sol717-719.toml", |t| t.replace("historic_distance_m = 226.1", "historic_distance_m = -226.1"));
+    let (o, _p, _d) = validate_modified("sol717-719.toml", |t| {
+        t.replace(
+            "historic_distance_m = 226.1",
+            "historic_distance_m = -226.1",
+        )
+    });
     assert_bad_input(&o, &["sols[1].historic_distance_m", "non-negative"]);
 }
 
 #[test]
 fn missing_map_file_is_rejected() {
-    let (o, _p, _d) = validate_modified("sol717-719.toml", |t| t.replace("crater-floor/dem.tif", "crater-floor/nope.tif"));
+    let (o, _p, _d) = validate_modified("sol717-719.toml", |t| {
+        t.replace("crater-floor/dem.tif", "crater-floor/nope.tif")
+    });
     assert_bad_input(&o, &["map.dem", "nope.tif", "an existing file"]);
 }
 
@@ -214,14 +346,21 @@ fn self_intersecting_zone_is_rejected() {
     .expect("write");
     let (o, _p, _d) = validate_modified("sol717-719.toml", |t| {
         let scen = root().join("scenarios");
-        t.replace(&format!("zones = \"{}/sol717-719.zones.geojson\"", scen.display()), &format!("zones = {:?}", zones.display().to_string()))
+        t.replace(
+            &format!("zones = \"{}/sol717-719.zones.geojson\"", scen.display()),
+            &format!("zones = {:?}", zones.display().to_string()),
+        )
     });
     assert_bad_input(&o, &["bowtie.geojson", "features[0]", "bow tie"]);
 }
 
 #[test]
 fn unknown_strategy_is_rejected() {
-    let o = solsim().args(["run", "--strategy", "teleport"]).arg(scenario("sol383-386.toml")).output().expect("runs");
+    let o = solsim()
+        .args(["run", "--strategy", "teleport"])
+        .arg(scenario("sol383-386.toml"))
+        .output()
+        .expect("runs");
     assert_bad_input(&o, &["--strategy", "teleport", "extension+onboard"]);
 }
 
@@ -231,9 +370,18 @@ fn outputs_are_not_half_written_when_the_directory_is_unwritable() {
     let dir = tempfile::tempdir().expect("tempdir");
     let blocker = dir.path().join("out");
     std::fs::write(&blocker, "not a directory").expect("write");
-    let o = solsim().args(["run", "--out"]).arg(&blocker).arg(scenario("sol717-719.toml")).output().expect("runs");
+    let o = solsim()
+        .args(["run", "--out"])
+        .arg(&blocker)
+        .arg(scenario("sol717-719.toml"))
+        .output()
+        .expect("runs");
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    let leftovers: Vec<_> = std::fs::read_dir(dir.path()).expect("ls").filter_map(|e| e.ok()).map(|e| e.file_name()).collect();
+    let leftovers: Vec<_> = std::fs::read_dir(dir.path())
+        .expect("ls")
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name())
+        .collect();
     assert_eq!(leftovers.len(), 1, "{leftovers:?}");
     assert!(Path::new(&blocker).is_file());
 }

@@ -8,10 +8,16 @@ use std::path::Path;
 use solsim::regress;
 
 fn check(file: &str) {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios").join(file);
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenarios")
+        .join(file);
     let results = regress::check_scenario(&path).unwrap_or_else(|e| panic!("{e}"));
     assert!(!results.is_empty(), "{file} has no expectations");
-    let failed: Vec<_> = results.iter().filter(|r| !r.mismatches.is_empty()).cloned().collect();
+    let failed: Vec<_> = results
+        .iter()
+        .filter(|r| !r.mismatches.is_empty())
+        .cloned()
+        .collect();
     assert!(failed.is_empty(), "\n{}", regress::text_report(&failed));
 }
 

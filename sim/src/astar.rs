@@ -184,7 +184,11 @@ impl OpenSet {
         loop {
             match (self.band.last(), self.side.peek()) {
                 (Some(&b), Some(&Reverse(s))) => {
-                    return if s < b { self.side.pop().map(|r| r.0) } else { self.band.pop() };
+                    return if s < b {
+                        self.side.pop().map(|r| r.0)
+                    } else {
+                        self.band.pop()
+                    };
                 }
                 (Some(_), None) => return self.band.pop(),
                 (None, Some(_)) => return self.side.pop().map(|r| r.0),
@@ -314,7 +318,10 @@ impl AStar {
             return None;
         }
         if start == goal {
-            return Some(GridPath { cells: vec![start], cost: 0.0 });
+            return Some(GridPath {
+                cells: vec![start],
+                cost: 0.0,
+            });
         }
         let open_stamp = self.next_generation();
         let width = self.width;
@@ -327,12 +334,24 @@ impl AStar {
             width,
             goal_row: goal / width,
             goal_col: goal % width,
-            h_scale: if min_cost > 0.0 { f64::from(min_cost) } else { 0.0 },
+            h_scale: if min_cost > 0.0 {
+                f64::from(min_cost)
+            } else {
+                0.0
+            },
         };
         // Bands a fraction of the cheapest step wide.
-        let cost_unit = if search.h_scale > 0.0 { search.h_scale } else { 1.0 };
+        let cost_unit = if search.h_scale > 0.0 {
+            search.h_scale
+        } else {
+            1.0
+        };
         search.heap.reset(BANDS_PER_UNIT / cost_unit);
-        search.cells[start] = CellState { g: 0.0, parent: start as u32, stamp: open_stamp };
+        search.cells[start] = CellState {
+            g: 0.0,
+            parent: start as u32,
+            stamp: open_stamp,
+        };
         let f_start = search.heuristic(start / width, start % width);
         search.heap.push(open_key(f_start, 0.0, start as u32));
 
@@ -456,7 +475,11 @@ impl Search<'_> {
         let state = &mut self.cells[nb];
         let ng = g + step;
         if state.stamp != self.open_stamp || ng < state.g {
-            *state = CellState { g: ng, parent: cur, stamp: self.open_stamp };
+            *state = CellState {
+                g: ng,
+                parent: cur,
+                stamp: self.open_stamp,
+            };
             let f = ng + self.heuristic(row, col);
             self.heap.push(open_key(f, ng, nb as u32));
         }
@@ -471,7 +494,13 @@ mod tests {
     use std::cmp::Ordering;
 
     /// Plain Dijkstra over the same move model, returning the optimal cost.
-    fn dijkstra(width: usize, height: usize, cost: &[f32], start: usize, goal: usize) -> Option<f64> {
+    fn dijkstra(
+        width: usize,
+        height: usize,
+        cost: &[f32],
+        start: usize,
+        goal: usize,
+    ) -> Option<f64> {
         #[derive(PartialEq)]
         struct Key(f64);
         impl Eq for Key {}
@@ -516,7 +545,11 @@ mod tests {
                         continue;
                     }
                     let v = (r + dr) as usize * width + (c + dc) as usize;
-                    let step = if dr != 0 && dc != 0 { std::f64::consts::SQRT_2 } else { 1.0 };
+                    let step = if dr != 0 && dc != 0 {
+                        std::f64::consts::SQRT_2
+                    } else {
+                        1.0
+                    };
                     let nd = d + step * f64::from(cost[v]);
                     if nd < dist[v] {
                         dist[v] = nd;
@@ -651,7 +684,11 @@ mod tests {
         let mut astar = AStar::new(100, 100);
         let path = astar.plan(0, 99 * 100 + 99, 1.0, |_| 1.0).expect("path");
         assert_eq!(path.cells.len(), 100);
-        assert!(astar.expansions() < 400, "{} expansions", astar.expansions());
+        assert!(
+            astar.expansions() < 400,
+            "{} expansions",
+            astar.expansions()
+        );
     }
 
     #[test]
@@ -673,8 +710,15 @@ mod tests {
     fn same_input_same_path() {
         let mut rng = ChaCha8Rng::seed_from_u64(1);
         // Few distinct costs: many equal-cost paths, so tie-breaking decides.
-        let cost: Vec<f32> =
-            (0..40 * 40).map(|_| if rng.random_bool(0.1) { f32::INFINITY } else { 1.0 }).collect();
+        let cost: Vec<f32> = (0..40 * 40)
+            .map(|_| {
+                if rng.random_bool(0.1) {
+                    f32::INFINITY
+                } else {
+                    1.0
+                }
+            })
+            .collect();
         let first = AStar::new(40, 40).plan(41, 1558, 1.0, |i| cost[i]);
         let mut reused = AStar::new(40, 40);
         for _ in 0..3 {
@@ -687,8 +731,9 @@ mod tests {
     fn walled_off_goal_has_no_path() {
         // Column 3 fully blocked splits a 7×5 grid.
         let (w, h) = (7, 5);
-        let cost: Vec<f32> =
-            (0..w * h).map(|i| if i % w == 3 { f32::INFINITY } else { 1.0 }).collect();
+        let cost: Vec<f32> = (0..w * h)
+            .map(|i| if i % w == 3 { f32::INFINITY } else { 1.0 })
+            .collect();
         let mut astar = AStar::new(w, h);
         assert_eq!(astar.plan(0, w * h - 1, 1.0, |i| cost[i]), None);
         assert!(astar.expansions() > 0);
@@ -717,17 +762,32 @@ mod tests {
     fn start_equals_goal_and_one_cell_grid() {
         let mut astar = AStar::new(1, 1);
         let path = astar.plan(0, 0, 1.0, |_| 1.0).expect("path");
-        assert_eq!(path, GridPath { cells: vec![0], cost: 0.0 });
+        assert_eq!(
+            path,
+            GridPath {
+                cells: vec![0],
+                cost: 0.0
+            }
+        );
         assert_eq!(astar.plan(0, 0, 1.0, |_| f32::INFINITY), None);
         let mut astar = AStar::new(4, 3);
-        assert_eq!(astar.plan(5, 5, 1.0, |_| 1.5).map(|p| p.cells), Some(vec![5]));
+        assert_eq!(
+            astar.plan(5, 5, 1.0, |_| 1.5).map(|p| p.cells),
+            Some(vec![5])
+        );
     }
 
     #[test]
     fn blocked_start_or_goal_has_no_path() {
         let mut astar = AStar::new(5, 5);
-        assert_eq!(astar.plan(0, 24, 1.0, |i| if i == 0 { f32::INFINITY } else { 1.0 }), None);
-        assert_eq!(astar.plan(0, 24, 1.0, |i| if i == 24 { f32::NAN } else { 1.0 }), None);
+        assert_eq!(
+            astar.plan(0, 24, 1.0, |i| if i == 0 { f32::INFINITY } else { 1.0 }),
+            None
+        );
+        assert_eq!(
+            astar.plan(0, 24, 1.0, |i| if i == 24 { f32::NAN } else { 1.0 }),
+            None
+        );
         assert_eq!(astar.expansions(), 0);
     }
 
@@ -738,7 +798,10 @@ mod tests {
         assert_eq!(path.cells, vec![5, 4, 3, 2, 1, 0]);
         assert_eq!(path.cost, 10.0);
         let mut astar = AStar::new(1, 6);
-        assert_eq!(astar.plan(0, 5, 1.0, |i| if i == 3 { f32::INFINITY } else { 1.0 }), None);
+        assert_eq!(
+            astar.plan(0, 5, 1.0, |i| if i == 3 { f32::INFINITY } else { 1.0 }),
+            None
+        );
     }
 
     #[test]

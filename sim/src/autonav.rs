@@ -80,9 +80,21 @@ impl Default for RoverParams {
             drive_rate_m_per_h: 100.0,
             step_m: 2.0,
             waypoint_tolerance_m: 2.0,
-            vo_success: PerTerrain { sand: 0.80, soil: 0.97, bedrock: 0.995 },
-            slip_fraction: PerTerrain { sand: 0.12, soil: 0.04, bedrock: 0.02 },
-            terrain_cost: PerTerrain { sand: 1.3, soil: 1.0, bedrock: 1.0 },
+            vo_success: PerTerrain {
+                sand: 0.80,
+                soil: 0.97,
+                bedrock: 0.995,
+            },
+            slip_fraction: PerTerrain {
+                sand: 0.12,
+                soil: 0.04,
+                bedrock: 0.02,
+            },
+            terrain_cost: PerTerrain {
+                sand: 1.3,
+                soil: 1.0,
+                bedrock: 1.0,
+            },
             vo_noise_fraction: 0.01,
             heading_sigma_deg: 0.3,
             edge_buffer_m: 5.0,
@@ -133,7 +145,10 @@ impl RoverState {
         Self {
             truth: TruePose { position_m: p },
             estimate: EstimatedPose { position_m: p },
-            uncertainty: UncertaintyState { margin_m: initial_margin_m, ..Default::default() },
+            uncertainty: UncertaintyState {
+                margin_m: initial_margin_m,
+                ..Default::default()
+            },
             next_waypoint: 1,
             path: None,
         }
@@ -187,12 +202,19 @@ impl FollowedPath {
         let i = self.cum_len_m.partition_point(|&c| c <= s).max(1);
         let (a, b) = (self.points[i - 1], self.points[i]);
         let seg = self.cum_len_m[i] - self.cum_len_m[i - 1];
-        let t = if seg > 0.0 { (s - self.cum_len_m[i - 1]) / seg } else { 0.0 };
+        let t = if seg > 0.0 {
+            (s - self.cum_len_m[i - 1]) / seg
+        } else {
+            0.0
+        };
         a + (b - a) * t
     }
 
     fn open_ahead(&self, r_m: f64) -> bool {
-        let i = self.cum_len_m.partition_point(|&c| c < self.progress_m).min(self.cells.len() - 1);
+        let i = self
+            .cum_len_m
+            .partition_point(|&c| c < self.progress_m)
+            .min(self.cells.len() - 1);
         f64::from(self.suffix_min[i]) > r_m
     }
 }
@@ -220,16 +242,24 @@ pub fn drive_sol(
 ) -> DriveResult {
     let rover = ctx.rover;
     let grid = ctx.grid;
-    let mut out = DriveResult { path_m: vec![to_array(state.estimate.position_m)], ..Default::default() };
-    let heading_err = Rotation2::new(rover.heading_sigma_deg.to_radians() * rng.sample::<f64, _>(StandardNormal));
+    let mut out = DriveResult {
+        path_m: vec![to_array(state.estimate.position_m)],
+        ..Default::default()
+    };
+    let heading_err =
+        Rotation2::new(rover.heading_sigma_deg.to_radians() * rng.sample::<f64, _>(StandardNormal));
     let rate_m_per_s = rover.drive_rate_m_per_h / 3600.0;
     loop {
         if state.next_waypoint >= ctx.route.len() {
             out.reached_goal = true;
             break;
         }
-        let distance_left = limits.max_distance_m.map_or(f64::INFINITY, |m| m - out.distance_m);
-        let time_left = limits.max_time_s.map_or(f64::INFINITY, |t| t - out.drive_time_s);
+        let distance_left = limits
+            .max_distance_m
+            .map_or(f64::INFINITY, |m| m - out.distance_m);
+        let time_left = limits
+            .max_time_s
+            .map_or(f64::INFINITY, |t| t - out.drive_time_s);
         if distance_left <= 1e-9 || time_left <= 1e-9 {
             break;
         }
@@ -243,7 +273,12 @@ pub fn drive_sol(
             continue;
         }
         // The rover's own cell must be open.
-        let fault_at = |kind| Fault { kind, after_m: out.distance_m, uncertainty_m: r, position_m: to_array(est) };
+        let fault_at = |kind| Fault {
+            kind,
+            after_m: out.distance_m,
+            uncertainty_m: r,
+            position_m: to_array(est),
+        };
         let Some(here) = grid.cell_of(to_array(est)) else {
             out.fault = Some(fault_at(FaultKind::KeepIn));
             break;
@@ -271,7 +306,9 @@ pub fn drive_sol(
                 }
             }
         }
-        let Some(path) = state.path.as_mut() else { break };
+        let Some(path) = state.path.as_mut() else {
+            break;
+        };
         // Command a step toward the carrot one step ahead on the path.
         let carrot = path.point_at(path.progress_m + rover.step_m);
         let mut cmd = carrot - est;
@@ -304,8 +341,15 @@ pub fn drive_sol(
         let slip_noise: f64 = rng.sample(StandardNormal);
         let slip = (rover.slip_fraction.get(class) * (1.0 + 0.5 * slip_noise)).clamp(0.0, 0.9);
         let mut d_true = heading_err * cmd * (1.0 - slip);
-        let noise = Vector2::new(rng.sample::<f64, _>(StandardNormal), rng.sample::<f64, _>(StandardNormal));
-        let mut d_est = if vo_ok { d_true + noise * (rover.vo_noise_fraction * cmd_len) } else { cmd };
+        let noise = Vector2::new(
+            rng.sample::<f64, _>(StandardNormal),
+            rng.sample::<f64, _>(StandardNormal),
+        );
+        let mut d_est = if vo_ok {
+            d_true + noise * (rover.vo_noise_fraction * cmd_len)
+        } else {
+            cmd
+        };
         let mut odo = d_est.norm();
         if odo > distance_left {
             let f = distance_left / odo;
@@ -348,10 +392,14 @@ fn plan_path(
         let edge_penalty = (1.0 - margin / buffer).clamp(0.0, 1.0);
         (ctx.rover.terrain_cost.get(grid.terrain_class(i)) * (1.0 + edge_penalty)) as f32
     })?;
-    let mut points: Vec<Vector2<f64>> = found.cells.iter().map(|&c| {
-        let p = grid.center_of(c);
-        Vector2::new(p[0], p[1])
-    }).collect();
+    let mut points: Vec<Vector2<f64>> = found
+        .cells
+        .iter()
+        .map(|&c| {
+            let p = grid.center_of(c);
+            Vector2::new(p[0], p[1])
+        })
+        .collect();
     points[0] = est;
     if let Some(last) = points.last_mut() {
         let wp = ctx.route[waypoint];
@@ -374,7 +422,14 @@ fn plan_path(
         }
         suffix_min[k] = m;
     }
-    Some(FollowedPath { waypoint, points, cum_len_m, cells: found.cells, suffix_min, progress_m: 0.0 })
+    Some(FollowedPath {
+        waypoint,
+        points,
+        cum_len_m,
+        cells: found.cells,
+        suffix_min,
+        progress_m: 0.0,
+    })
 }
 
 fn to_array(v: Vector2<f64>) -> [f64; 2] {

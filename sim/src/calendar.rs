@@ -123,8 +123,14 @@ mod tests {
             drive_start: SolSeconds(0),
             drive_end: SolSeconds(1),
         };
-        assert!(cal.data_available(0, Some(2)), "402's panorama is in for the Friday plan");
-        assert!(!cal.data_available(1, Some(2)), "403's is not: Friday is restricted");
+        assert!(
+            cal.data_available(0, Some(2)),
+            "402's panorama is in for the Friday plan"
+        );
+        assert!(
+            !cal.data_available(1, Some(2)),
+            "403's is not: Friday is restricted"
+        );
         assert!(cal.data_available(3, Some(5)), "405's is in for Monday");
         assert!(!cal.data_available(4, Some(5)), "406 has no pass");
         assert!(cal.data_available(4, None));

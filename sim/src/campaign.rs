@@ -13,7 +13,9 @@ use crate::astar::AStar;
 use crate::autonav::{DriveContext, DriveLimits, RoverParams, RoverState, VoSource, drive_sol};
 use crate::calendar::{Calendar, Planning};
 use crate::localizer::{LocalizationResult, StatisticalLocalizer};
-use crate::outcome::{CampaignOutcome, FaultKind, LegClearance, LocalizationEvent, SolRecord, Totals};
+use crate::outcome::{
+    CampaignOutcome, FaultKind, LegClearance, LocalizationEvent, SolRecord, Totals,
+};
 use crate::planning_grid::PlanningGrid;
 use crate::pose::estimate_error_m;
 use crate::strategy::Strategy;
@@ -70,12 +72,23 @@ pub fn leg_clearances(c: &Campaign) -> Vec<LegClearance> {
                         (ca.max(cb) + window_margin_cells).min(g.width - 1),
                         (ra.max(rb) + window_margin_cells).min(g.height - 1),
                     );
-                    widest_path(g.width, g.height, &g.clearance_m, |k| !g.hazard[k], a, b, Some(window))
-                        .map(f64::from)
+                    widest_path(
+                        g.width,
+                        g.height,
+                        &g.clearance_m,
+                        |k| !g.hazard[k],
+                        a,
+                        b,
+                        Some(window),
+                    )
+                    .map(f64::from)
                 }
                 _ => None,
             };
-            LegClearance { to_waypoint: i, clearance_m }
+            LegClearance {
+                to_waypoint: i,
+                clearance_m,
+            }
         })
         .collect()
 }
@@ -87,7 +100,12 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
     let mut rng = ChaCha8Rng::seed_from_u64(c.seed);
     rng.set_stream(strategy.stream_id());
     let mut astar = AStar::new(c.grid.width, c.grid.height);
-    let ctx = DriveContext { grid: &c.grid, route: &c.route, rover: &c.rover, model: &c.model };
+    let ctx = DriveContext {
+        grid: &c.grid,
+        route: &c.route,
+        rover: &c.rover,
+        model: &c.model,
+    };
     let mut state = RoverState::new(c.route[0], c.model.initial_margin_m);
 
     let mut records = Vec::with_capacity(cal.sols.len());
@@ -98,19 +116,21 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
     let mut goal_sol: Option<u32> = None;
     // Per plan: the sols that may drive and why the others may not.
     let mut plan_uplink = cal.sols.first().map_or(0, |s| s.sol);
-    let mut plan_drive: Vec<Option<&'static str>> = vec![Some("no plan uplinked yet"); cal.sols.len()];
+    let mut plan_drive: Vec<Option<&'static str>> =
+        vec![Some("no plan uplinked yet"); cal.sols.len()];
     let mut plan_last_drive: Option<usize> = None;
     let mut planning = Planning::Ground;
 
     for (idx, entry) in cal.sols.iter().enumerate() {
-        let r_before = state.uncertainty.radius_m(&c.model);
         let mut ground_event = None;
         if entry.uplink {
             plan_uplink = entry.sol;
             let next_uplink = cal.next_uplink_after(idx);
-            let plan_end = next_uplink.unwrap_or(cal.sols.len());
             let ground_knows = last_drive.is_none_or(|s| cal.data_available(s, Some(idx)));
-            planning = strategy.planning().or(entry.historic_planning).unwrap_or(Planning::Ground);
+            planning = strategy
+                .planning()
+                .or(entry.historic_planning)
+                .unwrap_or(Planning::Ground);
             if ground_knows && halted_by_fault.is_some() {
                 halted_by_fault = None;
             }
@@ -130,36 +150,9 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
                     uncertainty_after_m: state.uncertainty.radius_m(&c.model),
                 });
             }
-            plan_last_drive = None;
-            for j in idx..plan_end {
-                let e = &cal.sols[j];
-                plan_drive[j] = if strategy == Strategy::Replay {
-                    match e.historic {
-                        Some(h) if h.distance_m > 0.0 => None,
-                        _ => Some("no drive in the historic record"),
-                    }
-                } else {
-                    match planning {
-                        Planning::Extension => None,
-                        Planning::Ground if !ground_knows => {
-                            Some("rover position not yet known on the ground: awaiting post-drive data")
-                        }
-                        Planning::Ground => {
-                            if e.drive_allowed && cal.data_available(j, next_uplink) {
-                                plan_last_drive = Some(j);
-                            }
-                            None
-                        }
-                    }
-                };
-            }
-            if planning == Planning::Ground && strategy != Strategy::Replay && ground_knows {
-                for (j, slot) in plan_drive.iter_mut().enumerate().take(plan_end).skip(idx) {
-                    if plan_last_drive.is_none_or(|l| j > l) {
-                        *slot = Some("post-drive data would not reach Earth in time for the next plan");
-                    }
-                }
-            }
+            let decided = plan_drives(cal, strategy, planning, ground_knows, idx, next_uplink);
+            plan_last_drive = decided.last_drive;
+            plan_drive[idx..idx + decided.reasons.len()].copy_from_slice(&decided.reasons);
         }
 
         let skip_reason: Option<String> = if goal_sol.is_some() {
@@ -170,8 +163,12 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
             Some("halted after a fault: awaiting ground review".into())
         } else if let Some(reason) = plan_drive[idx] {
             Some(reason.into())
-        } else if strategy == Strategy::Extension && sols_since_localization >= c.max_extension_sols {
-            Some(format!("extension limit: {} sols without a localization", c.max_extension_sols))
+        } else if strategy == Strategy::Extension && sols_since_localization >= c.max_extension_sols
+        {
+            Some(format!(
+                "extension limit: {} sols without a localization",
+                c.max_extension_sols
+            ))
         } else {
             None
         };
@@ -201,21 +198,36 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
             plans: 0,
             path_m: Vec::new(),
         };
-        let _ = r_before;
 
         if record.drove {
             let mut end = cal.drive_end.0;
-            if planning == Planning::Ground && plan_last_drive == Some(idx) {
-                if let Some(pass) = entry.downlink_lmst {
-                    end = end.min(pass.0.saturating_sub(c.post_drive_imaging_s));
-                }
+            if let (Planning::Ground, Some(pass)) = (planning, entry.downlink_lmst)
+                && plan_last_drive == Some(idx)
+            {
+                end = end.min(pass.0.saturating_sub(c.post_drive_imaging_s));
             }
-            let window = DriveLimits { max_distance_m: None, max_time_s: Some(f64::from(end.saturating_sub(cal.drive_start.0))) };
+            let window = DriveLimits {
+                max_distance_m: None,
+                max_time_s: Some(f64::from(end.saturating_sub(cal.drive_start.0))),
+            };
             let (limits, vo) = match (strategy, entry.historic) {
                 // A historic fault must emerge from the geometry: drive the window, not the record.
                 (Strategy::Replay, Some(h)) => (
-                    if h.ended_in_fault { window } else { DriveLimits { max_distance_m: Some(h.distance_m), max_time_s: None } },
-                    VoSource::Historic { novo_fraction: if h.distance_m > 0.0 { h.novo_m / h.distance_m } else { 0.0 } },
+                    if h.ended_in_fault {
+                        window
+                    } else {
+                        DriveLimits {
+                            max_distance_m: Some(h.distance_m),
+                            max_time_s: None,
+                        }
+                    },
+                    VoSource::Historic {
+                        novo_fraction: if h.distance_m > 0.0 {
+                            h.novo_m / h.distance_m
+                        } else {
+                            0.0
+                        },
+                    },
                 ),
                 _ => (window, VoSource::Terrain),
             };
@@ -252,8 +264,11 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
             // MOB_WRITE_ONBD_INPUT_FILE → HBS run, reboot, run, compare → MOB_APPLY_ONBD_LOCALIZATION
             let event = match c.localizer.localize(&mut rng) {
                 LocalizationResult::Accepted { error_m, sigma_m } => {
-                    state.estimate.position_m = state.truth.position_m + nalgebra::Vector2::new(error_m[0], error_m[1]);
-                    state.uncertainty.reset_onboard(sigma_m, c.operator_margin_m);
+                    state.estimate.position_m =
+                        state.truth.position_m + nalgebra::Vector2::new(error_m[0], error_m[1]);
+                    state
+                        .uncertainty
+                        .reset_onboard(sigma_m, c.operator_margin_m);
                     state.clear_path();
                     sols_since_localization = 0;
                     LocalizationEvent {
@@ -280,10 +295,87 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
     }
 
     let totals = totals(c, &records, goal_sol, &state);
-    CampaignOutcome { strategy: strategy.name().into(), seed: c.seed, sols: records, totals }
+    CampaignOutcome {
+        strategy: strategy.name().into(),
+        seed: c.seed,
+        sols: records,
+        totals,
+    }
 }
 
-fn totals(c: &Campaign, records: &[SolRecord], goal_sol: Option<u32>, state: &RoverState) -> Totals {
+/// Which sols of a plan may drive: `reasons[k]` is `None` for sol `first + k` if it may, else why
+/// not; `last_drive` is the plan's last drive sol under ground planning.
+struct PlanDrives {
+    reasons: Vec<Option<&'static str>>,
+    last_drive: Option<usize>,
+}
+
+/// Decide the drive sols of the plan uplinked at calendar index `first` (it runs up to the next
+/// uplink).
+fn plan_drives(
+    cal: &Calendar,
+    strategy: Strategy,
+    planning: Planning,
+    ground_knows: bool,
+    first: usize,
+    next_uplink: Option<usize>,
+) -> PlanDrives {
+    let sols = &cal.sols[first..next_uplink.unwrap_or(cal.sols.len())];
+    if strategy == Strategy::Replay {
+        let reasons = sols
+            .iter()
+            .map(|e| match e.historic {
+                Some(h) if h.distance_m > 0.0 => None,
+                _ => Some("no drive in the historic record"),
+            })
+            .collect();
+        return PlanDrives {
+            reasons,
+            last_drive: None,
+        };
+    }
+    match planning {
+        Planning::Extension => PlanDrives {
+            reasons: vec![None; sols.len()],
+            last_drive: None,
+        },
+        Planning::Ground if !ground_knows => PlanDrives {
+            reasons: vec![
+                Some(
+                    "rover position not yet known on the ground: awaiting post-drive data"
+                );
+                sols.len()
+            ],
+            last_drive: None,
+        },
+        Planning::Ground => {
+            // Drive up to the last sol whose post-drive data reaches Earth before the next plan.
+            let last_drive = (first..first + sols.len())
+                .rev()
+                .find(|&j| cal.sols[j].drive_allowed && cal.data_available(j, next_uplink));
+            let reasons = (first..first + sols.len())
+                .map(|j| {
+                    if last_drive.is_some_and(|l| j <= l) {
+                        None
+                    } else {
+                        Some("post-drive data would not reach Earth in time for the next plan")
+                    }
+                })
+                .collect();
+            PlanDrives {
+                reasons,
+                last_drive,
+            }
+        }
+    }
+}
+
+fn totals(
+    c: &Campaign,
+    records: &[SolRecord],
+    goal_sol: Option<u32>,
+    state: &RoverState,
+) -> Totals {
     let first = records.first().map_or(0, |r| r.sol);
     let mut remaining = 0.0;
     if state.next_waypoint < c.route.len() {
@@ -299,10 +391,23 @@ fn totals(c: &Campaign, records: &[SolRecord], goal_sol: Option<u32>, state: &Ro
         sols_to_goal: goal_sol.map(|g| g - first + 1),
         drive_sols: records.iter().filter(|r| r.drove).count() as u32,
         distance_m: records.iter().map(|r| r.distance_m).sum(),
-        no_path_faults: records.iter().filter(|r| r.fault.as_ref().is_some_and(|f| f.kind == FaultKind::NoPath)).count() as u32,
+        no_path_faults: records
+            .iter()
+            .filter(|r| {
+                r.fault
+                    .as_ref()
+                    .is_some_and(|f| f.kind == FaultKind::NoPath)
+            })
+            .count() as u32,
         faults: records.iter().filter(|r| r.fault.is_some()).count() as u32,
-        max_uncertainty_m: records.iter().map(|r| r.end_uncertainty_m.max(r.start_uncertainty_m)).fold(0.0, f64::max),
-        ground_localizations: records.iter().filter(|r| r.ground_localization.is_some()).count() as u32,
+        max_uncertainty_m: records
+            .iter()
+            .map(|r| r.end_uncertainty_m.max(r.start_uncertainty_m))
+            .fold(0.0, f64::max),
+        ground_localizations: records
+            .iter()
+            .filter(|r| r.ground_localization.is_some())
+            .count() as u32,
         onboard_localizations_applied: records
             .iter()
             .filter(|r| r.onboard_localization.as_ref().is_some_and(|l| l.applied))

@@ -23,10 +23,9 @@
 //! the expensive pass contiguous in memory with no transpose.
 //!
 //! # Exactness and determinism
-//! `G` and the distances are integers. The envelope breakpoints `s = (f_q + q² − f_v − v²) /
-//! 2(q − v)` are computed in `f64` from integers below 2⁵³, so they are correctly rounded and
-//! two different breakpoints never compare in the wrong order: the envelope, and hence every
-//! squared distance, is exact. Every row and strip is computed by the same sequential code
+//! Everything is integer arithmetic: `G` in `u32`, the envelope in `i64`, where the parabola
+//! breakpoints are compared by cross-multiplication instead of being divided out. The squared
+//! distances are therefore exact. Every row and strip is computed by the same sequential code
 //! whatever thread runs it, so results are identical for any rayon thread count.
 //!
 //! ## References
@@ -203,11 +202,9 @@ struct RowScratch {
     /// Vertical distances of the current row, gathered from the strips.
     g: Vec<u32>,
     /// Columns of the parabolas on the lower envelope.
-    v: Vec<u32>,
+    v: Vec<i64>,
     /// `G(v)² + v²` of each envelope parabola.
-    key: Vec<f64>,
-    /// Left end of each envelope parabola's interval (`z[0] = −∞`, `z[n] = +∞`).
-    z: Vec<f64>,
+    key: Vec<i64>,
 }
 
 fn row_pass<T, M>(strips: &[u32], width: usize, height: usize, out: &mut [T], map: &M)
@@ -218,12 +215,7 @@ where
     out.par_chunks_mut(ROW_BAND * width)
         .enumerate()
         .for_each_init(
-            || RowScratch {
-                g: vec![0; width],
-                v: vec![0; width],
-                key: vec![0.0; width],
-                z: vec![0.0; width + 1],
-            },
+            || RowScratch { g: vec![0; width], v: vec![0; width], key: vec![0; width] },
             |scratch, (band, rows)| {
                 for (r, out_row) in rows.chunks_exact_mut(width).enumerate() {
                     let row = band * ROW_BAND + r;
@@ -245,56 +237,52 @@ fn gather_row(strips: &[u32], height: usize, row: usize, g: &mut [u32]) {
 
 /// Felzenszwalb–Huttenlocher lower envelope of `(x − q)² + G(q)²` over the finite `G(q)`,
 /// then read off at every column.
+///
+/// The breakpoint of parabolas `a < b` is `s(a, b) = (key_b − key_a) / 2(b − a)` with
+/// `key = G² + q²`. Both of its uses are compared by cross-multiplying in `i64`, which is exact
+/// and needs no division: `s(top, q) ≤ s(prev, top)` (pop `top`) and `s(k, k+1) < x` (move
+/// right). With sides ≤ 2²⁰ every product stays below 2⁶².
 fn envelope_row<T, M>(scratch: &mut RowScratch, out: &mut [T], map: &M)
 where
     T: Copy,
     M: Fn(u64) -> T,
 {
-    let RowScratch { g, v, key, z } = scratch;
+    let RowScratch { g, v, key } = scratch;
     let mut n = 0_usize;
     for (q, &gq) in g.iter().enumerate() {
         if gq == NO_FEATURE {
             continue;
         }
-        let qf = q as f64;
-        let key_q = f64::from(gq) * f64::from(gq) + qf * qf;
-        if n == 0 {
-            v[0] = q as u32;
-            key[0] = key_q;
-            z[0] = f64::NEG_INFINITY;
-            n = 1;
-            continue;
-        }
-        loop {
-            let top = n - 1;
-            let s = (key_q - key[top]) / (2.0 * (qf - f64::from(v[top])));
-            // z[0] = −∞, so the first parabola is never popped.
-            if s <= z[top] {
+        let q = q as i64;
+        let key_q = i64::from(gq) * i64::from(gq) + q * q;
+        // The first parabola is never popped (its interval starts at −∞).
+        while n >= 2 {
+            let (v_prev, key_prev) = (v[n - 2], key[n - 2]);
+            let (v_top, key_top) = (v[n - 1], key[n - 1]);
+            if (key_q - key_top) * (v_top - v_prev) <= (key_top - key_prev) * (q - v_top) {
                 n -= 1;
             } else {
-                v[n] = q as u32;
-                key[n] = key_q;
-                z[n] = s;
-                n += 1;
                 break;
             }
         }
+        v[n] = q;
+        key[n] = key_q;
+        n += 1;
     }
     if n == 0 {
         out.fill(map(NO_FEATURE_D2));
         return;
     }
-    z[n] = f64::INFINITY;
     let mut k = 0_usize;
-    for (q, o) in out.iter_mut().enumerate() {
-        let qf = q as f64;
-        while z[k + 1] < qf {
+    for (x, o) in out.iter_mut().enumerate() {
+        let x = x as i64;
+        while k + 1 < n && key[k + 1] - key[k] < 2 * x * (v[k + 1] - v[k]) {
             k += 1;
         }
-        let vk = v[k] as usize;
-        let dx = q.abs_diff(vk) as u64;
-        let gv = u64::from(g[vk]);
-        *o = map(dx * dx + gv * gv);
+        let dx = x - v[k];
+        // key − v² = G(v)², so the squared distance is (x − v)² + key − v².
+        let d2 = dx * dx + key[k] - v[k] * v[k];
+        *o = map(d2 as u64);
     }
 }
 
@@ -384,7 +372,11 @@ mod tests {
         assert_eq!(d[0], 0.0);
         assert_eq!(d[4], 2.0);
         assert_eq!(d[24], (32.0_f64.sqrt() * 0.5) as f32);
-        assert!(distance_m(&[false; 4], 2, 2, 1.0).iter().all(|d| d.is_infinite()));
+        assert!(
+            distance_m(&[false; 4], 2, 2, 1.0)
+                .iter()
+                .all(|d| d.is_infinite())
+        );
     }
 
     /// Dilation of `mask` by the disc of radius `r`, by brute force.

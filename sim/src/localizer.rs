@@ -28,7 +28,12 @@ pub struct StatisticalLocalizer {
 
 impl Default for StatisticalLocalizer {
     fn default() -> Self {
-        Self { mean_error_m: 0.36, p99_error_m: 0.93, failure_rate: 0.02, reported_sigma_m: 0.93 }
+        Self {
+            mean_error_m: 0.36,
+            p99_error_m: 0.93,
+            failure_rate: 0.02,
+            reported_sigma_m: 0.93,
+        }
     }
 }
 
@@ -61,7 +66,11 @@ impl StatisticalLocalizer {
         let (mut lo, mut hi) = (0.3f64, 20.0f64);
         for _ in 0..200 {
             let mid = 0.5 * (lo + hi);
-            if ratio(mid) > target { lo = mid } else { hi = mid }
+            if ratio(mid) > target {
+                lo = mid
+            } else {
+                hi = mid
+            }
         }
         let k = 0.5 * (lo + hi);
         (k, self.mean_error_m / gamma(1.0 + 1.0 / k))
@@ -74,10 +83,15 @@ impl StatisticalLocalizer {
         let u: f64 = rng.random();
         let angle: f64 = rng.random::<f64>() * std::f64::consts::TAU;
         if fail < self.failure_rate {
-            return LocalizationResult::Rejected { reason: "validity checks failed: ambiguous map match" };
+            return LocalizationResult::Rejected {
+                reason: "validity checks failed: ambiguous map match",
+            };
         }
         let radius = lambda * (-(1.0 - u).ln()).powf(1.0 / k);
-        LocalizationResult::Accepted { error_m: [radius * angle.cos(), radius * angle.sin()], sigma_m: self.reported_sigma_m }
+        LocalizationResult::Accepted {
+            error_m: [radius * angle.cos(), radius * angle.sin()],
+            sigma_m: self.reported_sigma_m,
+        }
     }
 }
 
@@ -99,7 +113,10 @@ fn gamma(x: f64) -> f64 {
     }
     let x = x - 1.0;
     let t = x + 7.5;
-    let series = C[1..].iter().enumerate().fold(C[0], |acc, (i, c)| acc + c / (x + i as f64 + 1.0));
+    let series = C[1..]
+        .iter()
+        .enumerate()
+        .fold(C[0], |acc, (i, c)| acc + c / (x + i as f64 + 1.0));
     (2.0 * std::f64::consts::PI).sqrt() * t.powf(x + 0.5) * (-t).exp() * series
 }
 
@@ -117,7 +134,10 @@ mod tests {
 
     #[test]
     fn sampled_errors_match_the_published_statistics() {
-        let loc = StatisticalLocalizer { failure_rate: 0.0, ..Default::default() };
+        let loc = StatisticalLocalizer {
+            failure_rate: 0.0,
+            ..Default::default()
+        };
         let mut rng = ChaCha8Rng::seed_from_u64(7);
         let mut errors: Vec<f64> = (0..200_000)
             .map(|_| match loc.localize(&mut rng) {
@@ -134,9 +154,14 @@ mod tests {
 
     #[test]
     fn failure_rate_is_honoured() {
-        let loc = StatisticalLocalizer { failure_rate: 0.25, ..Default::default() };
+        let loc = StatisticalLocalizer {
+            failure_rate: 0.25,
+            ..Default::default()
+        };
         let mut rng = ChaCha8Rng::seed_from_u64(1);
-        let rejected = (0..40_000).filter(|_| matches!(loc.localize(&mut rng), LocalizationResult::Rejected { .. })).count();
+        let rejected = (0..40_000)
+            .filter(|_| matches!(loc.localize(&mut rng), LocalizationResult::Rejected { .. }))
+            .count();
         assert!((rejected as f64 / 40_000.0 - 0.25).abs() < 0.01);
     }
 }

@@ -30,7 +30,11 @@ pub struct GridParams {
 
 impl Default for GridParams {
     fn default() -> Self {
-        Self { resolution_m: 1.0, footprint_radius_m: 1.5, max_slope_deg: 25.0 }
+        Self {
+            resolution_m: 1.0,
+            footprint_radius_m: 1.5,
+            max_slope_deg: 25.0,
+        }
     }
 }
 
@@ -71,11 +75,21 @@ impl PlanningGrid {
             for col in 0..width {
                 let (x, y) = geo.center_of(col, row);
                 let i = row * width + col;
-                hazard[i] = slope.sample_nearest(x, y).is_some_and(|s| f64::from(s) > params.max_slope_deg);
+                hazard[i] = slope
+                    .sample_nearest(x, y)
+                    .is_some_and(|s| f64::from(s) > params.max_slope_deg);
                 terrain[i] = layers.terrain.sample_nearest(x, y).unwrap_or(0);
             }
         }
-        Self::from_parts(zones, geo, width, height, params.footprint_radius_m, hazard, terrain)
+        Self::from_parts(
+            zones,
+            geo,
+            width,
+            height,
+            params.footprint_radius_m,
+            hazard,
+            terrain,
+        )
     }
 
     /// Build a grid from explicit hazard and terrain layers (used by tests and benchmarks).
@@ -102,15 +116,32 @@ impl PlanningGrid {
             sq.iter()
                 .zip(mask)
                 .map(|(&d2, &inside)| {
-                    let d = if inside { 0.0 } else { (f64::from(d2).sqrt() * res - 0.5 * res).max(0.0) };
+                    let d = if inside {
+                        0.0
+                    } else {
+                        (f64::from(d2).sqrt() * res - 0.5 * res).max(0.0)
+                    };
                     (d - footprint_radius_m) as f32
                 })
                 .collect()
         };
         let keep_out_clearance_m = to_clearance(&keep_out_mask);
         let keep_in_clearance_m = to_clearance(&outside_keep_in);
-        let clearance_m = keep_out_clearance_m.iter().zip(&keep_in_clearance_m).map(|(a, b)| a.min(*b)).collect();
-        Self { geo, width, height, keep_out_clearance_m, keep_in_clearance_m, clearance_m, hazard, terrain }
+        let clearance_m = keep_out_clearance_m
+            .iter()
+            .zip(&keep_in_clearance_m)
+            .map(|(a, b)| a.min(*b))
+            .collect();
+        Self {
+            geo,
+            width,
+            height,
+            keep_out_clearance_m,
+            keep_in_clearance_m,
+            clearance_m,
+            hazard,
+            terrain,
+        }
     }
 
     /// Index of the cell containing map point `p` (metres), or `None` off the grid.
@@ -147,6 +178,11 @@ impl PlanningGrid {
     /// The clearance layer as a raster (for export and inspection).
     #[must_use]
     pub fn clearance_raster(&self) -> Raster<f32> {
-        Raster { width: self.width, height: self.height, geo: self.geo, data: self.clearance_m.clone() }
+        Raster {
+            width: self.width,
+            height: self.height,
+            geo: self.geo,
+            data: self.clearance_m.clone(),
+        }
     }
 }

@@ -32,8 +32,13 @@ pub enum Strategy {
 
 impl Strategy {
     /// Every strategy, in report order.
-    pub const ALL: [Strategy; 5] =
-        [Strategy::Replay, Strategy::Ground, Strategy::Onboard, Strategy::Extension, Strategy::ExtensionOnboard];
+    pub const ALL: [Strategy; 5] = [
+        Strategy::Replay,
+        Strategy::Ground,
+        Strategy::Onboard,
+        Strategy::Extension,
+        Strategy::ExtensionOnboard,
+    ];
 
     /// The name used on the command line and in outputs.
     #[must_use]

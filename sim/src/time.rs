@@ -51,7 +51,12 @@ mod tests {
         let noon = SolSeconds::parse_lmst("12:00").expect("valid");
         assert_eq!(noon.0, SOL_S / 2 + 1); // 44,387.5 s rounds up
         assert_eq!(noon.lmst(), "12:00");
-        assert_eq!(SolSeconds::parse_lmst("11:30").map(SolSeconds::lmst).as_deref(), Some("11:30"));
+        assert_eq!(
+            SolSeconds::parse_lmst("11:30")
+                .map(SolSeconds::lmst)
+                .as_deref(),
+            Some("11:30")
+        );
         assert_eq!(SolSeconds::parse_lmst("25:00"), None);
         assert_eq!(SolSeconds::parse_lmst("12:60"), None);
         assert_eq!(SolSeconds::parse_lmst("noon"), None);

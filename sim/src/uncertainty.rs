@@ -20,7 +20,11 @@ pub struct UncertaintyModel {
 
 impl Default for UncertaintyModel {
     fn default() -> Self {
-        Self { k_vo: 0.05, k_novo: 0.50, initial_margin_m: 0.0 }
+        Self {
+            k_vo: 0.05,
+            k_novo: 0.50,
+            initial_margin_m: 0.0,
+        }
     }
 }
 
@@ -57,7 +61,11 @@ impl UncertaintyState {
 
     /// Onboard localization accepted: odometers to zero, margin = localizer σ + operator margin.
     pub fn reset_onboard(&mut self, localizer_sigma_m: f64, operator_margin_m: f64) {
-        *self = Self { margin_m: localizer_sigma_m + operator_margin_m, d_vo_m: 0.0, d_novo_m: 0.0 };
+        *self = Self {
+            margin_m: localizer_sigma_m + operator_margin_m,
+            d_vo_m: 0.0,
+            d_novo_m: 0.0,
+        };
     }
 }
 

@@ -140,7 +140,10 @@ pub fn widest_path(
     let mut heap = BinaryHeap::new();
     best[start_l] = clearance[start];
     state[start_l] = REACHED;
-    heap.push(Open { value: clearance[start], local: start_l as u32 });
+    heap.push(Open {
+        value: clearance[start],
+        local: start_l as u32,
+    });
     while let Some(Open { value, local }) = heap.pop() {
         let cur = local as usize;
         if state[cur] == CLOSED {
@@ -156,7 +159,11 @@ pub fn widest_path(
         let left = c > 0 && probe(&mut state, cur - 1);
         let right = c + 1 < win_w && probe(&mut state, cur + 1);
         let value_of = |ok: bool, l: usize| {
-            if ok { clearance[global(l)] } else { f32::NEG_INFINITY }
+            if ok {
+                clearance[global(l)]
+            } else {
+                f32::NEG_INFINITY
+            }
         };
         let (vu, vd, vl, vr) = (
             value_of(up, cur.wrapping_sub(win_w)),
@@ -172,7 +179,11 @@ pub fn widest_path(
             (left, cur.wrapping_sub(1), f32::INFINITY),
             (right, cur + 1, f32::INFINITY),
             (up && left, cur.wrapping_sub(win_w + 1), vu.min(vl)),
-            (up && right, cur.wrapping_sub(win_w).wrapping_add(1), vu.min(vr)),
+            (
+                up && right,
+                cur.wrapping_sub(win_w).wrapping_add(1),
+                vu.min(vr),
+            ),
             (down && left, (cur + win_w).wrapping_sub(1), vd.min(vl)),
             (down && right, cur + win_w + 1, vd.min(vr)),
         ];
@@ -184,7 +195,10 @@ pub fn widest_path(
             if state[nb] == USABLE || v > best[nb] {
                 state[nb] = REACHED;
                 best[nb] = v;
-                heap.push(Open { value: v, local: nb as u32 });
+                heap.push(Open {
+                    value: v,
+                    local: nb as u32,
+                });
             }
         }
     }
@@ -313,7 +327,15 @@ mod tests {
             };
             let start = rng.random_range(0..n);
             let goal = rng.random_range(0..n);
-            let got = widest_path(width, height, &clearance, |i| passable[i], start, goal, window);
+            let got = widest_path(
+                width,
+                height,
+                &clearance,
+                |i| passable[i],
+                start,
+                goal,
+                window,
+            );
             let want = brute_force(width, height, &clearance, &passable, start, goal, window);
             assert_eq!(got, want, "trial {trial}");
             found += usize::from(got.is_some());
@@ -329,16 +351,25 @@ mod tests {
         assert_eq!(v, Some(1.5));
         // A detour through a wider row wins.
         let clearance = [3.0, 0.5, 3.0, 3.0, 2.0, 3.0];
-        assert_eq!(widest_path(3, 2, &clearance, |_| true, 0, 2, None), Some(2.0));
+        assert_eq!(
+            widest_path(3, 2, &clearance, |_| true, 0, 2, None),
+            Some(2.0)
+        );
     }
 
     #[test]
     fn diagonal_corners_bound_the_move() {
         // 0 → 3 diagonally squeezes past corner 1 (clearance 0.5); 0 → 2 → 3 does not.
         let clearance = [5.0, 0.5, 5.0, 5.0];
-        assert_eq!(widest_path(2, 2, &clearance, |_| true, 0, 3, None), Some(5.0));
+        assert_eq!(
+            widest_path(2, 2, &clearance, |_| true, 0, 3, None),
+            Some(5.0)
+        );
         let clearance = [5.0, 0.5, 0.5, 5.0];
-        assert_eq!(widest_path(2, 2, &clearance, |_| true, 0, 3, None), Some(0.5));
+        assert_eq!(
+            widest_path(2, 2, &clearance, |_| true, 0, 3, None),
+            Some(0.5)
+        );
     }
 
     #[test]
@@ -347,7 +378,10 @@ mod tests {
         let open = [true, false, false, true];
         assert_eq!(widest_path(2, 2, &clearance, |i| open[i], 0, 3, None), None);
         let open = [true, true, false, true];
-        assert_eq!(widest_path(2, 2, &clearance, |i| open[i], 0, 3, None), Some(1.0));
+        assert_eq!(
+            widest_path(2, 2, &clearance, |i| open[i], 0, 3, None),
+            Some(1.0)
+        );
     }
 
     #[test]
@@ -355,12 +389,27 @@ mod tests {
         // 3×3 with the middle row blocked except at col 2; a window of cols 0..=1 cuts it.
         let clearance = [1.0; 9];
         let open = [true, true, true, false, false, true, true, true, true];
-        assert_eq!(widest_path(3, 3, &clearance, |i| open[i], 0, 6, None), Some(1.0));
-        assert_eq!(widest_path(3, 3, &clearance, |i| open[i], 0, 6, Some((0, 0, 1, 2))), None);
+        assert_eq!(
+            widest_path(3, 3, &clearance, |i| open[i], 0, 6, None),
+            Some(1.0)
+        );
+        assert_eq!(
+            widest_path(3, 3, &clearance, |i| open[i], 0, 6, Some((0, 0, 1, 2))),
+            None
+        );
         // Start outside the window, an empty window, and bounds past the grid (clipped).
-        assert_eq!(widest_path(3, 3, &clearance, |_| true, 2, 6, Some((0, 0, 1, 2))), None);
-        assert_eq!(widest_path(3, 3, &clearance, |_| true, 0, 0, Some((2, 0, 1, 2))), None);
-        assert_eq!(widest_path(3, 3, &clearance, |_| true, 0, 8, Some((0, 0, 9, 9))), Some(1.0));
+        assert_eq!(
+            widest_path(3, 3, &clearance, |_| true, 2, 6, Some((0, 0, 1, 2))),
+            None
+        );
+        assert_eq!(
+            widest_path(3, 3, &clearance, |_| true, 0, 0, Some((2, 0, 1, 2))),
+            None
+        );
+        assert_eq!(
+            widest_path(3, 3, &clearance, |_| true, 0, 8, Some((0, 0, 9, 9))),
+            Some(1.0)
+        );
     }
 
     #[test]
@@ -369,8 +418,14 @@ mod tests {
         assert_eq!(widest_path(1, 1, &[2.5], |_| false, 0, 0, None), None);
         assert_eq!(widest_path(1, 1, &[f32::NAN], |_| true, 0, 0, None), None);
         let inf = [f32::INFINITY; 3];
-        assert_eq!(widest_path(1, 3, &inf, |_| true, 0, 2, None), Some(f32::INFINITY));
+        assert_eq!(
+            widest_path(1, 3, &inf, |_| true, 0, 2, None),
+            Some(f32::INFINITY)
+        );
         let neg = [f32::NEG_INFINITY; 3];
-        assert_eq!(widest_path(3, 1, &neg, |_| true, 0, 2, None), Some(f32::NEG_INFINITY));
+        assert_eq!(
+            widest_path(3, 1, &neg, |_| true, 0, 2, None),
+            Some(f32::NEG_INFINITY)
+        );
     }
 }

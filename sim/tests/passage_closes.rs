@@ -30,22 +30,45 @@ fn passage(w: f64, cx: f64) -> PlanningGrid {
           "geometry": {{"type": "Polygon", "coordinates": [[[{r}, 90], [150, 90], [150, 110], [{r}, 110], [{r}, 90]]]}}}}
     ]}}"#
     );
-    let zones = ZoneSet::from_geojson_str(&text, Path::new("passage.geojson")).expect("valid zones");
+    let zones =
+        ZoneSet::from_geojson_str(&text, Path::new("passage.geojson")).expect("valid zones");
     let (width, height) = (100, 200);
     let geo = GeoTransform::new(0.0, 200.0, RES_M);
-    PlanningGrid::from_parts(&zones, geo, width, height, FOOTPRINT_M, vec![false; width * height], vec![2; width * height])
+    PlanningGrid::from_parts(
+        &zones,
+        geo,
+        width,
+        height,
+        FOOTPRINT_M,
+        vec![false; width * height],
+        vec![2; width * height],
+    )
 }
 
 fn path_exists(grid: &PlanningGrid, r_m: f64) -> bool {
     let start = grid.cell_of([50.0, 20.0]).expect("on grid");
     let goal = grid.cell_of([50.0, 180.0]).expect("on grid");
     let mut astar = AStar::new(grid.width, grid.height);
-    astar.plan(start, goal, 1.0, |i| if grid.closed(i, r_m) { f32::INFINITY } else { 1.0 }).is_some()
+    astar
+        .plan(start, goal, 1.0, |i| {
+            if grid.closed(i, r_m) {
+                f32::INFINITY
+            } else {
+                1.0
+            }
+        })
+        .is_some()
 }
 
 #[test]
 fn passage_closes_when_the_grown_keep_outs_meet() {
-    for (w, cx) in [(10.0, 50.0), (15.3, 50.37), (20.0, 49.5), (27.7, 51.2), (40.0, 50.0)] {
+    for (w, cx) in [
+        (10.0, 50.0),
+        (15.3, 50.37),
+        (20.0, 49.5),
+        (27.7, 51.2),
+        (40.0, 50.0),
+    ] {
         let grid = passage(w, cx);
         let half = w / 2.0;
         // Scan r in 1 cm steps around the analytic closing radius and find where paths stop.
@@ -54,7 +77,10 @@ fn passage_closes_when_the_grown_keep_outs_meet() {
         let mut r = (half - FOOTPRINT_M - 3.0).max(0.0);
         while r < half - FOOTPRINT_M + 3.0 {
             if path_exists(&grid, r) {
-                assert!(first_closed.is_none(), "w={w}: path re-opened at r={r} after closing");
+                assert!(
+                    first_closed.is_none(),
+                    "w={w}: path re-opened at r={r} after closing"
+                );
                 last_open = Some(r);
             } else if first_closed.is_none() {
                 first_closed = Some(r);
@@ -68,16 +94,36 @@ fn passage_closes_when_the_grown_keep_outs_meet() {
             "w={w} cx={cx}: closes at r={closes_at:.2}, analytic {analytic:.2}, last open {last_open:?}"
         );
         // Clearly open below, clearly closed above.
-        assert!(path_exists(&grid, analytic - RES_M - 0.01), "w={w}: must be open one cell below");
-        assert!(!path_exists(&grid, analytic + RES_M + 0.01), "w={w}: must be closed one cell above");
+        assert!(
+            path_exists(&grid, analytic - RES_M - 0.01),
+            "w={w}: must be open one cell below"
+        );
+        assert!(
+            !path_exists(&grid, analytic + RES_M + 0.01),
+            "w={w}: must be closed one cell above"
+        );
         // The maximin path value is the same threshold: open iff r < value.
         let start = grid.cell_of([50.0, 20.0]).expect("on grid");
         let goal = grid.cell_of([50.0, 180.0]).expect("on grid");
-        let clearance = widest_path(grid.width, grid.height, &grid.clearance_m, |k| !grid.hazard[k], start, goal, None)
-            .expect("a path exists at r = 0");
+        let clearance = widest_path(
+            grid.width,
+            grid.height,
+            &grid.clearance_m,
+            |k| !grid.hazard[k],
+            start,
+            goal,
+            None,
+        )
+        .expect("a path exists at r = 0");
         let c = f64::from(clearance);
-        assert!(path_exists(&grid, c - 1e-3) && !path_exists(&grid, c + 1e-3), "w={w}: clearance {c} is the threshold");
-        assert!((c - analytic).abs() <= RES_M, "w={w}: clearance {c:.2} vs analytic {analytic:.2}");
+        assert!(
+            path_exists(&grid, c - 1e-3) && !path_exists(&grid, c + 1e-3),
+            "w={w}: clearance {c} is the threshold"
+        );
+        assert!(
+            (c - analytic).abs() <= RES_M,
+            "w={w}: clearance {c:.2} vs analytic {analytic:.2}"
+        );
     }
 }
 
@@ -85,15 +131,37 @@ fn passage_closes_when_the_grown_keep_outs_meet() {
 fn drive_with(grid: &PlanningGrid, r0: f64) -> Option<FaultKind> {
     let route = [[50.0, 20.0], [50.0, 180.0]];
     let rover = RoverParams::default();
-    let model = UncertaintyModel { k_vo: 0.0, k_novo: 0.0, initial_margin_m: r0 };
-    let ctx = DriveContext { grid, route: &route, rover: &rover, model: &model };
+    let model = UncertaintyModel {
+        k_vo: 0.0,
+        k_novo: 0.0,
+        initial_margin_m: r0,
+    };
+    let ctx = DriveContext {
+        grid,
+        route: &route,
+        rover: &rover,
+        model: &model,
+    };
     let mut state = RoverState::new(route[0], r0);
     let mut rng = ChaCha8Rng::seed_from_u64(3);
     let mut astar = AStar::new(grid.width, grid.height);
-    let limits = DriveLimits { max_distance_m: Some(400.0), max_time_s: None };
-    let result = drive_sol(&ctx, &mut state, limits, VoSource::Terrain, &mut rng, &mut astar);
+    let limits = DriveLimits {
+        max_distance_m: Some(400.0),
+        max_time_s: None,
+    };
+    let result = drive_sol(
+        &ctx,
+        &mut state,
+        limits,
+        VoSource::Terrain,
+        &mut rng,
+        &mut astar,
+    );
     if result.fault.is_none() {
-        assert!(result.reached_goal, "no fault, so the rover must get through");
+        assert!(
+            result.reached_goal,
+            "no fault, so the rover must get through"
+        );
     }
     result.fault.map(|f| f.kind)
 }
@@ -104,9 +172,17 @@ fn autonav_faults_no_path_exactly_when_the_passage_is_closed() {
     let grid = passage(w, 50.0);
     let analytic = w / 2.0 - FOOTPRINT_M;
     for r0 in [0.0, 4.0, analytic - RES_M - 0.05] {
-        assert_eq!(drive_with(&grid, r0), None, "r0={r0}: passage open, the drive must get through");
+        assert_eq!(
+            drive_with(&grid, r0),
+            None,
+            "r0={r0}: passage open, the drive must get through"
+        );
     }
     for r0 in [analytic + RES_M + 0.05, analytic + 5.0] {
-        assert_eq!(drive_with(&grid, r0), Some(FaultKind::NoPath), "r0={r0}: passage closed");
+        assert_eq!(
+            drive_with(&grid, r0),
+            Some(FaultKind::NoPath),
+            "r0={r0}: passage closed"
+        );
     }
 }
