@@ -41,11 +41,17 @@ use rayon::prelude::*;
 /// of the mask per row.
 pub const COLUMN_STRIP: usize = 64;
 
+/// Largest supported side, in cells (2²⁰): keeps the envelope's `i64` products exact.
+pub const MAX_SIDE: usize = 1 << 20;
+
 /// Rows per parallel task in the row pass (amortises the per-task scratch buffers).
 const ROW_BAND: usize = 16;
 
 /// Vertical distance sentinel: "no masked cell in this column".
 const NO_FEATURE: u32 = u32::MAX;
+
+/// `g_cap` that keeps every finite vertical distance in the envelope.
+const ALL_FEATURES: u32 = NO_FEATURE - 1;
 
 /// Squared distance sentinel handed to the output maps: "no masked cell anywhere".
 const NO_FEATURE_D2: u64 = u64::MAX;
@@ -64,10 +70,10 @@ const NO_FEATURE_D2: u64 = u64::MAX;
 /// squared distances are rounded to the nearest `f32` (relative error ≤ 2⁻²⁴).
 ///
 /// # Panics
-/// If `mask.len() != width * height`.
+/// If `mask.len() != width * height`, or a side exceeds [`MAX_SIDE`] cells.
 #[must_use]
 pub fn squared_edt(mask: &[bool], width: usize, height: usize) -> Vec<f32> {
-    transform(mask, width, height, |d2| {
+    transform(mask, width, height, ALL_FEATURES, |d2| {
         if d2 == NO_FEATURE_D2 {
             f32::INFINITY
         } else {
@@ -86,7 +92,7 @@ pub fn squared_edt(mask: &[bool], width: usize, height: usize) -> Vec<f32> {
 /// Metres, with `resolution_m_per_px` the side of one cell in metres.
 ///
 /// # Panics
-/// If `mask.len() != width * height`.
+/// If `mask.len() != width * height`, or a side exceeds [`MAX_SIDE`] cells.
 #[must_use]
 pub fn distance_m(
     mask: &[bool],
@@ -95,7 +101,7 @@ pub fn distance_m(
     resolution_m_per_px: f32,
 ) -> Vec<f32> {
     let resolution = f64::from(resolution_m_per_px);
-    transform(mask, width, height, |d2| {
+    transform(mask, width, height, ALL_FEATURES, |d2| {
         if d2 == NO_FEATURE_D2 {
             f32::INFINITY
         } else {
@@ -116,20 +122,27 @@ pub fn distance_m(
 /// `radius_cells` is in cells (cell widths).
 ///
 /// # Panics
-/// If `mask.len() != width * height`.
+/// If `mask.len() != width * height`, or a side exceeds [`MAX_SIDE`] cells.
 #[must_use]
 pub fn grow(mask: &[bool], width: usize, height: usize, radius_cells: f32) -> Vec<bool> {
     // f32 has a 24-bit significand, so its square is exact in f64's 53 bits.
     let radius_sq = f64::from(radius_cells) * f64::from(radius_cells);
     let inside = radius_cells >= 0.0;
-    transform(mask, width, height, |d2| {
+    // A column feature farther than the radius vertically cannot bring any cell of its row
+    // within the radius, so it is left out of the envelope: same result, much less work.
+    let g_cap = match radius_cells {
+        r if r >= ALL_FEATURES as f32 => ALL_FEATURES,
+        r if r >= 0.0 => r as u32, // floor: an integer G is ≤ r iff it is ≤ ⌊r⌋
+        _ => 0,
+    };
+    transform(mask, width, height, g_cap, |d2| {
         inside && d2 != NO_FEATURE_D2 && (d2 as f64) <= radius_sq
     })
 }
 
 /// Runs both passes and maps each exact squared distance (`NO_FEATURE_D2` when the mask is
 /// empty) to the output type.
-fn transform<T, M>(mask: &[bool], width: usize, height: usize, map: M) -> Vec<T>
+fn transform<T, M>(mask: &[bool], width: usize, height: usize, g_cap: u32, map: M) -> Vec<T>
 where
     T: Copy + Default + Send,
     M: Fn(u64) -> T + Sync,
@@ -139,12 +152,16 @@ where
         width * height,
         "mask length must be width * height ({width} * {height})"
     );
+    assert!(
+        width <= MAX_SIDE && height <= MAX_SIDE,
+        "grid {width}×{height} has a side over {MAX_SIDE} cells"
+    );
     let mut out = vec![T::default(); width * height];
     if out.is_empty() {
         return out;
     }
     let strips = column_pass(mask, width, height);
-    row_pass(&strips, width, height, &mut out, &map);
+    row_pass(&strips, width, height, g_cap, &mut out, &map);
     out
 }
 
@@ -207,7 +224,7 @@ struct RowScratch {
     key: Vec<i64>,
 }
 
-fn row_pass<T, M>(strips: &[u32], width: usize, height: usize, out: &mut [T], map: &M)
+fn row_pass<T, M>(strips: &[u32], width: usize, height: usize, g_cap: u32, out: &mut [T], map: &M)
 where
     T: Copy + Send,
     M: Fn(u64) -> T + Sync,
@@ -220,7 +237,7 @@ where
                 for (r, out_row) in rows.chunks_exact_mut(width).enumerate() {
                     let row = band * ROW_BAND + r;
                     gather_row(strips, height, row, &mut scratch.g);
-                    envelope_row(scratch, out_row, map);
+                    envelope_row(scratch, g_cap, out_row, map);
                 }
             },
         );
@@ -235,14 +252,14 @@ fn gather_row(strips: &[u32], height: usize, row: usize, g: &mut [u32]) {
     }
 }
 
-/// Felzenszwalb–Huttenlocher lower envelope of `(x − q)² + G(q)²` over the finite `G(q)`,
-/// then read off at every column.
+/// Felzenszwalb–Huttenlocher lower envelope of `(x − q)² + G(q)²` over the `G(q) ≤ g_cap`
+/// (finite), then read off at every column (`NO_FEATURE_D2` where there is none).
 ///
 /// The breakpoint of parabolas `a < b` is `s(a, b) = (key_b − key_a) / 2(b − a)` with
 /// `key = G² + q²`. Both of its uses are compared by cross-multiplying in `i64`, which is exact
 /// and needs no division: `s(top, q) ≤ s(prev, top)` (pop `top`) and `s(k, k+1) < x` (move
 /// right). With sides ≤ 2²⁰ every product stays below 2⁶².
-fn envelope_row<T, M>(scratch: &mut RowScratch, out: &mut [T], map: &M)
+fn envelope_row<T, M>(scratch: &mut RowScratch, g_cap: u32, out: &mut [T], map: &M)
 where
     T: Copy,
     M: Fn(u64) -> T,
@@ -250,7 +267,7 @@ where
     let RowScratch { g, v, key } = scratch;
     let mut n = 0_usize;
     for (q, &gq) in g.iter().enumerate() {
-        if gq == NO_FEATURE {
+        if gq > g_cap {
             continue;
         }
         let q = q as i64;

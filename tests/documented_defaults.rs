@@ -1,0 +1,62 @@
+//! Every default the README states is the default the code uses (rapier's docs drifted from its
+//! `Default`; this test keeps ours honest). Each pair is (text in README.md, value in code).
+
+use sim::autonav::RoverParams;
+use sim::localizer::StatisticalLocalizer;
+use sim::planning_grid::GridParams;
+use sim::uncertainty::UncertaintyModel;
+
+#[test]
+fn readme_defaults_match_the_code() {
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).expect("README.md");
+    let rover = RoverParams::default();
+    let grid = GridParams::default();
+    let model = UncertaintyModel::default();
+    let loc = StatisticalLocalizer::default();
+    let stated: &[(&str, f64, f64)] = &[
+        ("`k_vo` (0.05)", 0.05, model.k_vo),
+        ("`k_novo` (0.50)", 0.50, model.k_novo),
+        ("`initial_margin_m` (0)", 0.0, model.initial_margin_m),
+        ("`footprint_radius_m` (default 1.5)", 1.5, grid.footprint_radius_m),
+        ("`drive_rate_m_per_h` (default 100)", 100.0, rover.drive_rate_m_per_h),
+        ("`step_m` (default 2)", 2.0, rover.step_m),
+        ("`waypoint_tolerance_m` (default 2)", 2.0, rover.waypoint_tolerance_m),
+        ("`resolution_m` (default 1)", 1.0, grid.resolution_m),
+        ("(default 25)", 25.0, grid.max_slope_deg),
+        ("`vo_success` (sand 0.80, soil 0.97, bedrock 0.995)", 0.80, rover.vo_success.sand),
+        ("`vo_success` (sand 0.80, soil 0.97, bedrock 0.995)", 0.97, rover.vo_success.soil),
+        ("`vo_success` (sand 0.80, soil 0.97, bedrock 0.995)", 0.995, rover.vo_success.bedrock),
+        ("`slip_fraction`\n    (0.12 / 0.04 / 0.02)", 0.12, rover.slip_fraction.sand),
+        ("`slip_fraction`\n    (0.12 / 0.04 / 0.02)", 0.04, rover.slip_fraction.soil),
+        ("`slip_fraction`\n    (0.12 / 0.04 / 0.02)", 0.02, rover.slip_fraction.bedrock),
+        ("`terrain_cost` (1.3 / 1 / 1)", 1.3, rover.terrain_cost.sand),
+        ("`terrain_cost` (1.3 / 1 / 1)", 1.0, rover.terrain_cost.soil),
+        ("`vo_noise_fraction` (0.01)", 0.01, rover.vo_noise_fraction),
+        ("`heading_sigma_deg` (0.3)", 0.3, rover.heading_sigma_deg),
+        ("`edge_buffer_m` (5)", 5.0, rover.edge_buffer_m),
+        ("`mean_error_m` (0.36)", 0.36, loc.mean_error_m),
+        ("`p99_error_m` (0.93)", 0.93, loc.p99_error_m),
+        ("`failure_rate` (0.02)", 0.02, loc.failure_rate),
+        ("`reported_sigma_m` (0.93)", 0.93, loc.reported_sigma_m),
+    ];
+    for (text, documented, actual) in stated {
+        assert!(readme.contains(text), "README no longer states {text:?}");
+        assert_eq!(documented, actual, "README says {text:?} but the code default is {actual}");
+    }
+    // Scenario-level defaults live in src/scenario.rs; loading a scenario without them uses them.
+    for text in ["`operator_margin_m` (1.0)", "(default 11:00 / 15:00", "`post_drive_imaging_s` (default 1800)", "`max_extension_sols` (default 3)"] {
+        assert!(readme.contains(text), "README no longer states {text:?}");
+    }
+}
+
+#[test]
+fn scenario_level_defaults_apply_when_fields_are_omitted() {
+    // sol717-719.toml sets no [onboard_localization] or post-drive imaging: the defaults apply.
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/sol717-719.toml");
+    let s = solsim::scenario::Scenario::load(&path).expect("loads");
+    assert_eq!(s.campaign.operator_margin_m, 1.0);
+    assert_eq!(s.campaign.post_drive_imaging_s, 1800);
+    assert_eq!(s.campaign.max_extension_sols, 3);
+    assert_eq!(s.campaign.localizer, StatisticalLocalizer::default());
+    assert_eq!(s.campaign.model, UncertaintyModel::default());
+}
