@@ -37,7 +37,7 @@ fn bench_compare(c: &mut Criterion) {
         b.iter(|| {
             let s = Scenario::load(&path).expect("bundled scenario loads");
             let runs = regress::run_strategies(&s, &s.strategies());
-            assert_eq!(runs.len(), 5);
+            assert_eq!(runs.1.len(), 5);
             runs
         });
     });

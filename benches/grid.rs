@@ -23,11 +23,12 @@
 //! Threads: 1-thread figures run inside a `rayon` pool with `num_threads(1)` (`install`), the
 //! 2-thread ones in a pool of 2.
 
-use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Duration;
 
-use criterion::{BenchmarkId, Criterion, SamplingMode, Throughput, criterion_group, criterion_main};
+use criterion::{
+    BenchmarkId, Criterion, SamplingMode, Throughput, criterion_group, criterion_main,
+};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use sim::astar::AStar;
@@ -78,14 +79,19 @@ fn astar_weights(n: usize, mask: &[bool], seed: u64) -> Vec<f32> {
             let (r, c) = (i / n, i % n);
             let near_corner = (r < CORNER_CLEAR && c < CORNER_CLEAR)
                 || (r >= n - CORNER_CLEAR && c >= n - CORNER_CLEAR);
-            if mask[i] && !near_corner { f32::INFINITY } else { cost }
+            if mask[i] && !near_corner {
+                f32::INFINITY
+            } else {
+                cost
+            }
         })
         .collect()
 }
 
 /// Writes a 2-D array as a NumPy `.npy` file (format 1.0).
 fn write_npy(path: &Path, descr: &str, rows: usize, cols: usize, data: &[u8]) {
-    let mut header = format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': ({rows}, {cols}), }}");
+    let mut header =
+        format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': ({rows}, {cols}), }}");
     // Magic (6) + version (2) + length (2) + header + '\n' is a multiple of 64.
     while (10 + header.len() + 1) % 64 != 0 {
         header.push(' ');
@@ -128,17 +134,27 @@ fn dump(dir: &Path, inst: &Instance) {
     let n = inst.n;
     std::fs::create_dir_all(dir).unwrap_or_else(|e| panic!("creating {}: {e}", dir.display()));
     let grown = edt::grow(&inst.mask, n, n, GROW_RADIUS_CELLS);
-    write_npy(&dir.join(format!("mask_{n}.npy")), "|b1", n, n, &bools(&inst.mask));
-    write_npy(&dir.join(format!("grown_{n}_r10.npy")), "|b1", n, n, &bools(&grown));
+    write_npy(
+        &dir.join(format!("mask_{n}.npy")),
+        "|b1",
+        n,
+        n,
+        &bools(&inst.mask),
+    );
+    write_npy(
+        &dir.join(format!("grown_{n}_r10.npy")),
+        "|b1",
+        n,
+        n,
+        &bools(&grown),
+    );
     let w: Vec<u8> = inst.weights.iter().flat_map(|x| x.to_le_bytes()).collect();
     write_npy(&dir.join(format!("weights_{n}.npy")), "<f4", n, n, &w);
     let mut astar = AStar::new(n, n);
     let path = astar
         .plan(0, n * n - 1, 1.0, |i| inst.weights[i])
         .expect("B4 instance has a path");
-    let mut json = String::new();
-    let _ = write!(
-        json,
+    let json = format!(
         "{{\"n\": {n}, \"start\": [0, 0], \"goal\": [{g}, {g}], \"cost\": {:.9}, \
          \"expansions\": {}, \"path_cells\": {}, \"blocked_cells\": {}, \"grown_cells\": {}}}\n",
         path.cost,
@@ -169,18 +185,26 @@ fn benches(c: &mut Criterion) {
         let n = inst.n;
         b3.throughput(Throughput::Elements((n * n) as u64));
         for (threads, pool) in &pools {
-            b3.bench_with_input(BenchmarkId::new(format!("grow_r10_{threads}thr"), n), inst, |b, inst| {
-                b.iter(|| pool.install(|| edt::grow(&inst.mask, n, n, GROW_RADIUS_CELLS)));
-            });
-            b3.bench_with_input(BenchmarkId::new(format!("edt_then_threshold_{threads}thr"), n), inst, |b, inst| {
-                b.iter(|| {
-                    pool.install(|| {
-                        let d2 = edt::squared_edt(&inst.mask, n, n);
-                        let r2 = GROW_RADIUS_CELLS * GROW_RADIUS_CELLS;
-                        d2.iter().map(|&d| d <= r2).collect::<Vec<bool>>()
-                    })
-                });
-            });
+            b3.bench_with_input(
+                BenchmarkId::new(format!("grow_r10_{threads}thr"), n),
+                inst,
+                |b, inst| {
+                    b.iter(|| pool.install(|| edt::grow(&inst.mask, n, n, GROW_RADIUS_CELLS)));
+                },
+            );
+            b3.bench_with_input(
+                BenchmarkId::new(format!("edt_then_threshold_{threads}thr"), n),
+                inst,
+                |b, inst| {
+                    b.iter(|| {
+                        pool.install(|| {
+                            let d2 = edt::squared_edt(&inst.mask, n, n);
+                            let r2 = GROW_RADIUS_CELLS * GROW_RADIUS_CELLS;
+                            d2.iter().map(|&d| d <= r2).collect::<Vec<bool>>()
+                        })
+                    });
+                },
+            );
         }
     }
     b3.finish();

@@ -144,12 +144,11 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Compare(a) => {
             let scenario = Scenario::load(&a.scenario)?;
             let strategies = scenario.strategies();
-            let runs = regress::run_strategies(&scenario, &strategies);
+            let (legs, runs) = regress::run_strategies(&scenario, &strategies);
             let outcomes: Vec<CampaignOutcome> = strategies
                 .iter()
                 .filter_map(|s| runs.get(s).cloned())
                 .collect();
-            let legs = campaign::leg_clearances(&scenario.campaign);
             if a.output.json {
                 let docs: Vec<_> = outcomes
                     .iter()

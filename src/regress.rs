@@ -9,6 +9,7 @@ use rayon::prelude::*;
 use crate::error::ScenarioError;
 use crate::expect::Mismatch;
 use crate::scenario::Scenario;
+use sim::outcome::LegClearance;
 use sim::{CampaignOutcome, Strategy, campaign};
 
 /// The result of one expectation.
@@ -26,18 +27,19 @@ pub struct CaseResult {
     pub seconds: f64,
 }
 
-/// Run all strategies a scenario's expectations need (in parallel; results do not depend on the
-/// thread count: each strategy has its own random stream).
+/// The route's per-leg passage clearances and the runs of `strategies` (in parallel; results do
+/// not depend on the thread count: each strategy has its own random stream).
 #[must_use]
 pub fn run_strategies(
     scenario: &Scenario,
     strategies: &[Strategy],
-) -> HashMap<Strategy, CampaignOutcome> {
+) -> (Vec<LegClearance>, HashMap<Strategy, CampaignOutcome>) {
     let legs = campaign::leg_clearances(&scenario.campaign);
-    strategies
+    let runs = strategies
         .par_iter()
         .map(|&s| (s, campaign::run_campaign(&scenario.campaign, s, &legs)))
-        .collect()
+        .collect();
+    (legs, runs)
 }
 
 /// Check one scenario.
@@ -51,7 +53,7 @@ pub fn check_scenario(path: &Path) -> Result<Vec<CaseResult>, ScenarioError> {
         .collect();
     needed.sort_by_key(|s| s.stream_id());
     needed.dedup();
-    let runs = run_strategies(&scenario, &needed);
+    let (_, runs) = run_strategies(&scenario, &needed);
     let seconds = start.elapsed().as_secs_f64();
     Ok(scenario
         .expectations

@@ -2,7 +2,6 @@
 //! physical ranges, class shares, forced sand, and round trips through the map files.
 #![allow(clippy::unwrap_used)]
 
-use std::time::Instant;
 
 use maps::procedural::{DuneField, TerrainParams, generate};
 use maps::raster_io::{dem_from_cm, dem_to_cm};
@@ -329,63 +328,3 @@ fn documented_defaults_hold() {
     );
 }
 
-/// Timing and a visual check. Run with
-/// `cargo test --release -p maps --test procedural -- --ignored --nocapture`;
-/// set `SOLSIM_PREVIEW_DIR` to also write the layers there (viewable PNGs, and the GeoTIFFs
-/// of `MapLayers::write_dir` under `geotiff/`).
-#[test]
-#[ignore = "timing and preview; run on demand in release"]
-fn generate_1500_px_timing_and_preview() {
-    let p = TerrainParams {
-        width_px: 1500,
-        height_px: 1500,
-        geo: GeoTransform::new(0.0, 1500.0, 1.0),
-        dune_fields: vec![DuneField::new([400.0, 1100.0], 220.0, 20.0)],
-        sand_patches: vec![([1150.0, 300.0], 60.0)],
-        ..TerrainParams::default()
-    };
-    let mut best = f64::MAX;
-    let mut m = None;
-    for _ in 0..3 {
-        let t = Instant::now();
-        m = Some(generate(&p));
-        best = best.min(t.elapsed().as_secs_f64());
-    }
-    let m = m.unwrap();
-    println!(
-        "1500x1500 px: best of 3 = {:.0} ms on {} threads",
-        best * 1e3,
-        rayon::current_num_threads()
-    );
-    println!(
-        "shares [nodata, sand, soil, bedrock] = {:?}",
-        shares(&m.terrain.data)
-    );
-    if let Some(dir) = std::env::var_os("SOLSIM_PREVIEW_DIR") {
-        let dir = std::path::PathBuf::from(dir);
-        m.write_dir(&dir.join("geotiff"), 0.0).unwrap();
-        maps::raster_io::write_png(&dir.join("appearance.png"), &m.appearance).unwrap();
-        let terrain = maps::Raster {
-            data: m.terrain.data.iter().map(|c| c * 80).collect(),
-            ..m.terrain.clone()
-        };
-        maps::raster_io::write_png(&dir.join("terrain.png"), &terrain).unwrap();
-        let (lo, hi) = m
-            .dem
-            .data
-            .iter()
-            .fold((f32::MAX, f32::MIN), |(a, b), &v| (a.min(v), b.max(v)));
-        let dem = maps::Raster {
-            data: m
-                .dem
-                .data
-                .iter()
-                .map(|v| ((v - lo) / (hi - lo) * 255.0) as u8)
-                .collect(),
-            width: m.dem.width,
-            height: m.dem.height,
-            geo: m.dem.geo,
-        };
-        maps::raster_io::write_png(&dir.join("dem.png"), &dem).unwrap();
-    }
-}

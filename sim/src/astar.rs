@@ -16,19 +16,27 @@
 //! Textbook A* (Hart, Nilsson & Raphael 1968) with the octile-distance heuristic
 //! `min_cost × (max(Δr, Δc) + (√2 − 1) · min(Δr, Δc))`. It is consistent when every passable
 //! cell costs at least `min_cost`, so each cell is expanded at most once and the returned path
-//! is optimal. The open set is an exact banded priority queue (see `OpenSet`) with lazy deletion (an improved cell is pushed
-//! again; stale entries are skipped when popped).
+//! is optimal. Improved cells are pushed again (lazy deletion); stale entries are skipped when
+//! popped. A closed neighbour is known to be passable, so its cost is not even looked up.
+//!
+//! The open set is an exact *banded* priority queue (Dial-style buckets over a coarse `f`, the
+//! current band sorted; see `OpenSet`): A* pops `f` almost monotonically, so most pushes are
+//! appends, and it pops exactly what a binary heap would — about 1.4× faster than the 4-ary
+//! heap it replaced on the B4 grids.
 //!
 //! Costs `g` are accumulated in `f64`: sums of millions of `f32` costs stay exact to far below
-//! the 1e-6 relative tolerance the tests demand, and equal-cost paths compare equal.
+//! the 1e-6 relative tolerance the tests demand.
 //!
-//! **Determinism.** Heap entries are totally ordered: lower `f` first, then larger `g` (deeper
-//! nodes first, which also cuts expansions on plateaus), then lower cell index. The same input
-//! therefore always gives the same path, whatever the heap's internal layout.
+//! **Determinism.** Open-set keys are totally ordered: lower `f` first, then larger `g`
+//! (compared as `f32`; deeper nodes first, which cuts expansions on plateaus of equal `f`), then
+//! lower cell index. The same input therefore always gives the same path. Equal `f` means
+//! bit-equal `f64`: on uniform-cost maps, sums that are equal in exact arithmetic may round
+//! differently, and those are ordered by their rounded values.
 //!
 //! **No per-call reset.** Each cell's state carries a generation stamp; a cell whose stamp is
 //! not the current call's is "unseen", so a call costs time proportional to the cells it
-//! touches, not to the grid size.
+//! touches, not to the grid size (16 bytes of state per cell, allocated once in
+//! [`AStar::new`]).
 //!
 //! ## References
 //! - P. E. Hart, N. J. Nilsson and B. Raphael, "A Formal Basis for the Heuristic Determination

@@ -383,7 +383,6 @@ fn plan_path(
     let grid = ctx.grid;
     let goal = grid.cell_of(ctx.route[waypoint])?;
     let buffer = ctx.rover.edge_buffer_m.max(1e-9);
-    let res = grid.geo.resolution_m_per_px;
     let found = astar.plan(here, goal, 1.0, |i| {
         if i != here && grid.closed(i, r_m) {
             return f32::INFINITY;
@@ -413,7 +412,6 @@ fn plan_path(
         }
         cum_len_m.push(acc);
     }
-    let _ = res;
     let mut suffix_min = vec![f32::INFINITY; found.cells.len()];
     let mut m = f32::INFINITY;
     for (k, &c) in found.cells.iter().enumerate().rev() {
