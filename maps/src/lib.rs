@@ -8,6 +8,18 @@
 //! - [`procedural`]: the seeded terrain generator the bundled scenario maps come from.
 //! - [`zone`]: keep-in / keep-out zones ([`ZoneSet`]) read from GeoJSON, with exact distance
 //!   queries (how far a point is from the nearest keep-out and from the keep-in edge).
+//!
+//! ```
+//! use maps::{GeoTransform, Raster};
+//!
+//! // A 10 m × 10 m raster of 1 m pixels whose north-west corner is at (100 m E, 500 m N).
+//! let geo = GeoTransform::new(100.0, 500.0, 1.0);
+//! let mut r = Raster::filled(10, 10, geo, 0u8);
+//! r.set(2, 0, 7); // column 2 of the north row
+//! assert_eq!(r.sample_nearest(102.5, 499.5), Some(7));
+//! assert_eq!(geo.center_of(2, 0), (102.5, 499.5));
+//! assert_eq!(r.sample_nearest(99.0, 499.5), None); // west of the map
+//! ```
 #![warn(missing_docs)]
 
 pub mod procedural;

@@ -14,6 +14,18 @@
 //! - [`localizer`]: the statistical onboard localizer (0.36 m mean / 0.93 m p99, paper 000 §4).
 //! - [`calendar`], [`strategy`]: operations calendar, data availability and the four strategies.
 //! - [`campaign`]: the multi-sol runner; [`outcome`]: what it reports.
+//!
+//! ```
+//! use sim::uncertainty::{UncertaintyModel, UncertaintyState};
+//!
+//! // Paper 000 Fig. 2: 655.8 m over sols 717-719, 0.289 m of it without VO.
+//! let model = UncertaintyModel::default(); // 5 % with VO, 50 % without
+//! let mut disc = UncertaintyState::default();
+//! disc.drive(655.8, 0.289 / 655.8);
+//! assert!((disc.radius_m(&model) - 32.92).abs() < 1e-3);
+//! disc.reset_onboard(0.93, 1.0); // localizer σ + operator margin
+//! assert!((disc.radius_m(&model) - 1.93).abs() < 1e-12);
+//! ```
 #![warn(missing_docs)]
 
 pub mod astar;
