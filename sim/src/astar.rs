@@ -21,8 +21,8 @@
 //!
 //! The open set is an exact *banded* priority queue (Dial-style buckets over a coarse `f`, the
 //! current band sorted; see `OpenSet`): A* pops `f` almost monotonically, so most pushes are
-//! appends, and it pops exactly what a binary heap would — about 1.4× faster than the 4-ary
-//! heap it replaced on the B4 grids.
+//! appends, and it pops exactly what a binary heap would — about 1.35× faster than the 4-ary
+//! heap it replaced on the B4 grids (BENCHMARKS.md).
 //!
 //! Costs `g` are accumulated in `f64`: sums of millions of `f32` costs stay exact to far below
 //! the 1e-6 relative tolerance the tests demand.
@@ -300,9 +300,9 @@ impl AStar {
     /// `cell_cost(i)` is the cost multiplier (normally ≥ 1.0) of entering cell `i`, or
     /// `f32::INFINITY` (or NaN) if the cell is blocked; it is only called on cells inside the
     /// grid. `min_cost` scales the octile heuristic and must not exceed any passable cell's cost
-    /// for the result to be optimal (normally 1.0); a value ≤ 0 or NaN turns the search into
-    /// Dijkstra's. A blocked start or goal gives `None`; `start == goal` gives the one-cell
-    /// path of cost 0.
+    /// for the result to be optimal (normally 1.0); a value ≤ 0, infinite or NaN turns the
+    /// search into Dijkstra's. Costs must be ≥ 0 (a negative cost gives an unspecified path).
+    /// A blocked start or goal gives `None`; `start == goal` gives the one-cell path of cost 0.
     ///
     /// # Panics
     /// If `start` or `goal` is outside the grid.
@@ -342,7 +342,7 @@ impl AStar {
             width,
             goal_row: goal / width,
             goal_col: goal % width,
-            h_scale: if min_cost > 0.0 {
+            h_scale: if min_cost > 0.0 && min_cost.is_finite() {
                 f64::from(min_cost)
             } else {
                 0.0
@@ -708,6 +708,9 @@ mod tests {
         let a_expanded = astar.expansions();
         let d = astar.plan(0, 624, 0.0, |i| cost[i]).map(|p| p.cost);
         assert!(astar.expansions() >= a_expanded);
+        for odd in [f32::NAN, f32::INFINITY, -1.0] {
+            assert_eq!(astar.plan(0, 624, odd, |i| cost[i]).map(|p| p.cost), d);
+        }
         match (a, d) {
             (Some(a), Some(d)) => assert!((a - d).abs() <= 1e-9 * d),
             (a, d) => assert_eq!(a, d),
