@@ -3,7 +3,7 @@
 # (only ratios taken side by side are meaningful on these noisy machines; PERFORMANCE.md §5).
 #
 # Usage: peers/run_peer_benchmarks.sh [SECTION...]     (default: all sections)
-# Sections: grid (B3 keep-out growth, B4 A*).
+# Sections: grid (B3 keep-out growth, B4 A*), campaign (the whole rapid-traverse compare).
 #
 # The Rust benches build with -C target-cpu=native into their own target dir
 # (target/bench-native), so the shared target/ is not rebuilt with other flags.
@@ -25,8 +25,25 @@ section_grid() {
         --criterion "$BENCH_TARGET/criterion" --out "$grids/ratios.json"
 }
 
+# --- campaign: solsim compare on the rapid traverse (all five strategies) ---------------------
+# No tool does this job, so there is no peer: the target is absolute (issue 2: under 2 s), and the
+# CLI itself is timed too, as a user runs it (hyperfine if installed, else 5 runs of `time`).
+section_campaign() {
+    echo "== campaign: cargo bench --bench campaign =="
+    RUSTFLAGS="-C target-cpu=native" CARGO_TARGET_DIR="$BENCH_TARGET" cargo bench --bench campaign
+    RUSTFLAGS="-C target-cpu=native" CARGO_TARGET_DIR="$BENCH_TARGET" cargo build --release --quiet
+    local bin="$BENCH_TARGET/release/solsim"
+    local scen=scenarios/rapid-traverse-379-409.toml
+    echo "== campaign: the CLI, end to end ($bin compare $scen --no-files) =="
+    if command -v hyperfine > /dev/null; then
+        hyperfine --warmup 1 --runs 10 "$bin compare $scen --no-files"
+    else
+        for _ in 1 2 3 4 5; do /usr/bin/time -f "%e s wall" "$bin" compare "$scen" --no-files > /dev/null; done
+    fi
+}
+
 sections=("$@")
-[ ${#sections[@]} -eq 0 ] && sections=(grid)
+[ ${#sections[@]} -eq 0 ] && sections=(grid campaign)
 for s in "${sections[@]}"; do
     "section_$s"
 done

@@ -24,6 +24,10 @@ use crate::pose::{EstimatedPose, TruePose};
 use crate::uncertainty::{UncertaintyModel, UncertaintyState};
 use maps::TerrainClass;
 
+/// Upper bound on AutoNav steps in one sol (a fixed loop bound: at 2 m a step this is 200 km;
+/// a sol that reaches it simply ends).
+pub const MAX_STEPS_PER_SOL: usize = 100_000;
+
 /// A value per terrain class.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct PerTerrain {
@@ -249,7 +253,7 @@ pub fn drive_sol(
     let heading_err =
         Rotation2::new(rover.heading_sigma_deg.to_radians() * rng.sample::<f64, _>(StandardNormal));
     let rate_m_per_s = rover.drive_rate_m_per_h / 3600.0;
-    loop {
+    for _ in 0..MAX_STEPS_PER_SOL {
         if state.next_waypoint >= ctx.route.len() {
             out.reached_goal = true;
             break;
