@@ -8,7 +8,8 @@ use sim::uncertainty::UncertaintyModel;
 
 #[test]
 fn readme_defaults_match_the_code() {
-    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).expect("README.md");
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md"))
+        .expect("README.md");
     let rover = RoverParams::default();
     let grid = GridParams::default();
     let model = UncertaintyModel::default();
@@ -17,18 +18,54 @@ fn readme_defaults_match_the_code() {
         ("`k_vo` (0.05)", 0.05, model.k_vo),
         ("`k_novo` (0.50)", 0.50, model.k_novo),
         ("`initial_margin_m` (0)", 0.0, model.initial_margin_m),
-        ("`footprint_radius_m` (default 1.5)", 1.5, grid.footprint_radius_m),
-        ("`drive_rate_m_per_h` (default 100)", 100.0, rover.drive_rate_m_per_h),
+        (
+            "`footprint_radius_m` (default 1.5)",
+            1.5,
+            grid.footprint_radius_m,
+        ),
+        (
+            "`drive_rate_m_per_h` (default 100)",
+            100.0,
+            rover.drive_rate_m_per_h,
+        ),
         ("`step_m` (default 2)", 2.0, rover.step_m),
-        ("`waypoint_tolerance_m` (default 2)", 2.0, rover.waypoint_tolerance_m),
+        (
+            "`waypoint_tolerance_m` (default 2)",
+            2.0,
+            rover.waypoint_tolerance_m,
+        ),
         ("`resolution_m` (default 1)", 1.0, grid.resolution_m),
         ("(default 25)", 25.0, grid.max_slope_deg),
-        ("`vo_success` (sand 0.80, soil 0.97, bedrock 0.995)", 0.80, rover.vo_success.sand),
-        ("`vo_success` (sand 0.80, soil 0.97, bedrock 0.995)", 0.97, rover.vo_success.soil),
-        ("`vo_success` (sand 0.80, soil 0.97, bedrock 0.995)", 0.995, rover.vo_success.bedrock),
-        ("`slip_fraction`\n    (0.12 / 0.04 / 0.02)", 0.12, rover.slip_fraction.sand),
-        ("`slip_fraction`\n    (0.12 / 0.04 / 0.02)", 0.04, rover.slip_fraction.soil),
-        ("`slip_fraction`\n    (0.12 / 0.04 / 0.02)", 0.02, rover.slip_fraction.bedrock),
+        (
+            "`vo_success` (sand 0.80, soil 0.97, bedrock 0.995)",
+            0.80,
+            rover.vo_success.sand,
+        ),
+        (
+            "`vo_success` (sand 0.80, soil 0.97, bedrock 0.995)",
+            0.97,
+            rover.vo_success.soil,
+        ),
+        (
+            "`vo_success` (sand 0.80, soil 0.97, bedrock 0.995)",
+            0.995,
+            rover.vo_success.bedrock,
+        ),
+        (
+            "`slip_fraction`\n    (0.12 / 0.04 / 0.02)",
+            0.12,
+            rover.slip_fraction.sand,
+        ),
+        (
+            "`slip_fraction`\n    (0.12 / 0.04 / 0.02)",
+            0.04,
+            rover.slip_fraction.soil,
+        ),
+        (
+            "`slip_fraction`\n    (0.12 / 0.04 / 0.02)",
+            0.02,
+            rover.slip_fraction.bedrock,
+        ),
         ("`terrain_cost` (1.3 / 1 / 1)", 1.3, rover.terrain_cost.sand),
         ("`terrain_cost` (1.3 / 1 / 1)", 1.0, rover.terrain_cost.soil),
         ("`vo_noise_fraction` (0.01)", 0.01, rover.vo_noise_fraction),
@@ -41,10 +78,18 @@ fn readme_defaults_match_the_code() {
     ];
     for (text, documented, actual) in stated {
         assert!(readme.contains(text), "README no longer states {text:?}");
-        assert_eq!(documented, actual, "README says {text:?} but the code default is {actual}");
+        assert_eq!(
+            documented, actual,
+            "README says {text:?} but the code default is {actual}"
+        );
     }
     // Scenario-level defaults live in src/scenario.rs; loading a scenario without them uses them.
-    for text in ["`operator_margin_m` (1.0)", "(default 11:00 / 15:00", "`post_drive_imaging_s` (default 1800)", "`max_extension_sols` (default 3)"] {
+    for text in [
+        "`operator_margin_m` (1.0)",
+        "(default 11:00 / 15:00",
+        "`post_drive_imaging_s` (default 1800)",
+        "`max_extension_sols` (default 3)",
+    ] {
         assert!(readme.contains(text), "README no longer states {text:?}");
     }
 }

@@ -23,7 +23,10 @@ impl GeoTransform {
     /// A transform with the given north-west corner and pixel size.
     #[must_use]
     pub fn new(origin_x_m: f64, origin_y_m: f64, resolution_m_per_px: f64) -> Self {
-        Self { origin_m: [origin_x_m, origin_y_m], resolution_m_per_px }
+        Self {
+            origin_m: [origin_x_m, origin_y_m],
+            resolution_m_per_px,
+        }
     }
 
     /// The (column, row) of the pixel containing map point `(x_m, y_m)`, as real numbers
@@ -31,7 +34,10 @@ impl GeoTransform {
     #[must_use]
     pub fn pixel_of(&self, x_m: f64, y_m: f64) -> (f64, f64) {
         let res = self.resolution_m_per_px;
-        ((x_m - self.origin_m[0]) / res, (self.origin_m[1] - y_m) / res)
+        (
+            (x_m - self.origin_m[0]) / res,
+            (self.origin_m[1] - y_m) / res,
+        )
     }
 
     /// Map position of the centre of pixel `(col, row)`.
@@ -47,7 +53,10 @@ impl GeoTransform {
     /// The transform of a raster covering the same ground with pixels `factor` times larger.
     #[must_use]
     pub fn scaled(&self, factor: f64) -> Self {
-        Self { origin_m: self.origin_m, resolution_m_per_px: self.resolution_m_per_px * factor }
+        Self {
+            origin_m: self.origin_m,
+            resolution_m_per_px: self.resolution_m_per_px * factor,
+        }
     }
 }
 
@@ -68,7 +77,12 @@ impl<T: Copy> Raster<T> {
     /// A raster filled with `value`.
     #[must_use]
     pub fn filled(width: usize, height: usize, geo: GeoTransform, value: T) -> Self {
-        Self { width, height, geo, data: vec![value; width * height] }
+        Self {
+            width,
+            height,
+            geo,
+            data: vec![value; width * height],
+        }
     }
 
     /// Sample at `(col, row)`.
@@ -77,7 +91,10 @@ impl<T: Copy> Raster<T> {
     /// If `col >= width` or `row >= height`.
     #[must_use]
     pub fn get(&self, col: usize, row: usize) -> T {
-        assert!(col < self.width && row < self.height, "pixel ({col}, {row}) outside raster");
+        assert!(
+            col < self.width && row < self.height,
+            "pixel ({col}, {row}) outside raster"
+        );
         self.data[row * self.width + col]
     }
 
@@ -86,7 +103,10 @@ impl<T: Copy> Raster<T> {
     /// # Panics
     /// If `col >= width` or `row >= height`.
     pub fn set(&mut self, col: usize, row: usize, value: T) {
-        assert!(col < self.width && row < self.height, "pixel ({col}, {row}) outside raster");
+        assert!(
+            col < self.width && row < self.height,
+            "pixel ({col}, {row}) outside raster"
+        );
         self.data[row * self.width + col] = value;
     }
 
@@ -106,7 +126,12 @@ impl<T: Copy> Raster<T> {
     pub fn extent_m(&self) -> (f64, f64, f64, f64) {
         let res = self.geo.resolution_m_per_px;
         let [ox, oy] = self.geo.origin_m;
-        (ox, oy - self.height as f64 * res, ox + self.width as f64 * res, oy)
+        (
+            ox,
+            oy - self.height as f64 * res,
+            ox + self.width as f64 * res,
+            oy,
+        )
     }
 
     /// Whether map point `(x_m, y_m)` lies on the raster.
@@ -127,7 +152,10 @@ impl Raster<f32> {
         }
         let (c, r) = self.geo.pixel_of(x_m, y_m);
         let (fc, fr) = ((c - 0.5).max(0.0), (r - 0.5).max(0.0));
-        let (c0, r0) = ((fc.floor() as usize).min(self.width - 1), (fr.floor() as usize).min(self.height - 1));
+        let (c0, r0) = (
+            (fc.floor() as usize).min(self.width - 1),
+            (fr.floor() as usize).min(self.height - 1),
+        );
         let (c1, r1) = ((c0 + 1).min(self.width - 1), (r0 + 1).min(self.height - 1));
         let (tx, ty) = ((fc - c0 as f64) as f32, (fr - r0 as f64) as f32);
         let top = self.get(c0, r0) * (1.0 - tx) + self.get(c1, r0) * tx;

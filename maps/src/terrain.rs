@@ -14,7 +14,11 @@ pub enum TerrainClass {
 
 impl TerrainClass {
     /// Every class, in code order.
-    pub const ALL: [TerrainClass; 3] = [TerrainClass::Sand, TerrainClass::Soil, TerrainClass::Bedrock];
+    pub const ALL: [TerrainClass; 3] = [
+        TerrainClass::Sand,
+        TerrainClass::Soil,
+        TerrainClass::Bedrock,
+    ];
 
     /// The code stored in terrain-class rasters: sand = 1, soil = 2, bedrock = 3 (0 = no data).
     #[must_use]

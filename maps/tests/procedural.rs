@@ -2,7 +2,6 @@
 //! physical ranges, class shares, forced sand, and round trips through the map files.
 #![allow(clippy::unwrap_used)]
 
-
 use maps::procedural::{DuneField, TerrainParams, generate};
 use maps::raster_io::{dem_from_cm, dem_to_cm};
 use maps::{GeoTransform, MapLayers, TerrainClass};
@@ -327,4 +326,3 @@ fn documented_defaults_hold() {
         ([0.0, 0.0], 100.0, 20.0, 1.5, 0.0)
     );
 }
-

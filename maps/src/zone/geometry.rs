@@ -53,7 +53,8 @@ pub(super) fn distance_point_segment(p: P, a: P, b: P) -> f64 {
     use parry2d_f64::math::Vector;
     use parry2d_f64::query::PointQuery;
     use parry2d_f64::shape::Segment;
-    Segment::new(Vector::new(a[0], a[1]), Vector::new(b[0], b[1])).distance_to_local_point(Vector::new(p[0], p[1]), true)
+    Segment::new(Vector::new(a[0], a[1]), Vector::new(b[0], b[1]))
+        .distance_to_local_point(Vector::new(p[0], p[1]), true)
 }
 
 /// Where a point lies relative to a closed region.
