@@ -17,7 +17,7 @@ use maps::procedural::{self, TerrainParams};
 /// Arguments of `solsim map generate`.
 #[derive(Debug, clap::Args)]
 pub struct GenerateArgs {
-    /// Recipe file (TOML with a [terrain] table).
+    /// Recipe file (TOML with a `[terrain]` table).
     pub recipe: PathBuf,
     /// Output directory for appearance.tif, dem.tif (16-bit cm) and terrain.tif.
     #[arg(long, value_name = "DIR")]
