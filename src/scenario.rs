@@ -7,12 +7,16 @@
 
 use std::path::{Path, PathBuf};
 
-use serde::Deserialize;
 use sha2::{Digest, Sha256};
 
 use crate::error::ScenarioError;
-use crate::expect::{Expectation, RawExpectation};
+
+mod raw;
+
+use crate::expect::Expectation;
 use maps::{GeoTransform, MapLayers, ZoneSet};
+use raw::RawPerTerrain;
+pub use raw::RawScenario;
 use sim::autonav::{PerTerrain, RoverParams};
 use sim::calendar::{Calendar, HistoricSol, Planning, SolEntry};
 use sim::campaign::Campaign;
@@ -20,125 +24,6 @@ use sim::localizer::StatisticalLocalizer;
 use sim::planning_grid::{GridParams, PlanningGrid};
 use sim::time::SolSeconds;
 use sim::uncertainty::UncertaintyModel;
-
-/// The file as written.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawScenario {
-    name: String,
-    #[serde(default)]
-    description: String,
-    seed: u64,
-    map: RawMap,
-    #[serde(default)]
-    grid: RawGrid,
-    #[serde(default)]
-    rover: RawRover,
-    #[serde(default)]
-    uncertainty: RawUncertainty,
-    #[serde(default)]
-    onboard_localization: RawLocalizer,
-    #[serde(default)]
-    operations: RawOperations,
-    route: RawRoute,
-    sols: Vec<RawSol>,
-    #[serde(default)]
-    expect: Vec<RawExpectation>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawMap {
-    appearance: PathBuf,
-    dem: PathBuf,
-    terrain: PathBuf,
-    zones: PathBuf,
-    #[serde(default)]
-    dem_datum_m: f64,
-    /// Needed only for PNG rasters, which carry no georeference.
-    resolution_m_per_px: Option<f64>,
-    origin_m: Option<[f64; 2]>,
-}
-
-#[derive(Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawGrid {
-    resolution_m: Option<f64>,
-    max_slope_deg: Option<f64>,
-}
-
-#[derive(Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawPerTerrain {
-    sand: Option<f64>,
-    soil: Option<f64>,
-    bedrock: Option<f64>,
-}
-
-#[derive(Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawRover {
-    footprint_radius_m: Option<f64>,
-    drive_rate_m_per_h: Option<f64>,
-    step_m: Option<f64>,
-    waypoint_tolerance_m: Option<f64>,
-    vo_success: Option<RawPerTerrain>,
-    slip_fraction: Option<RawPerTerrain>,
-    terrain_cost: Option<RawPerTerrain>,
-    vo_noise_fraction: Option<f64>,
-    heading_sigma_deg: Option<f64>,
-    edge_buffer_m: Option<f64>,
-}
-
-#[derive(Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawUncertainty {
-    k_vo: Option<f64>,
-    k_novo: Option<f64>,
-    initial_margin_m: Option<f64>,
-}
-
-#[derive(Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawLocalizer {
-    mean_error_m: Option<f64>,
-    p99_error_m: Option<f64>,
-    failure_rate: Option<f64>,
-    reported_sigma_m: Option<f64>,
-    operator_margin_m: Option<f64>,
-}
-
-#[derive(Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawOperations {
-    drive_start_lmst: Option<String>,
-    drive_end_lmst: Option<String>,
-    post_drive_imaging_s: Option<u32>,
-    max_extension_sols: Option<u32>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawRoute {
-    waypoints: Vec<[f64; 2]>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawSol {
-    sol: u32,
-    uplink: Option<bool>,
-    restricted: Option<bool>,
-    downlink: Option<bool>,
-    downlink_lmst: Option<String>,
-    drive: Option<bool>,
-    historic_planning: Option<String>,
-    historic_distance_m: Option<f64>,
-    historic_novo_m: Option<f64>,
-    historic_fault: Option<String>,
-    #[serde(default)]
-    note: String,
-}
 
 /// Default settings, written once: the scenario-level defaults are the library ones.
 const DEFAULT_OPERATOR_MARGIN_M: f64 = 1.0;
