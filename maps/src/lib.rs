@@ -5,6 +5,7 @@
 //! - [`terrain`]: terrain classes ([`TerrainClass`]: sand, soil, bedrock).
 //! - [`raster_io`]: PNG and GeoTIFF readers and writers (appearance u8, DEM as 16-bit cm or f32 m,
 //!   terrain class u8) and [`MapLayers`], the three layers of one map.
+//! - [`package`]: onboard map packages: the maps masked to a corridor around the route, PNG.
 //! - [`procedural`]: the seeded terrain generator the bundled scenario maps come from.
 //! - [`zone`]: keep-in / keep-out zones ([`ZoneSet`]) read from GeoJSON, with exact distance
 //!   queries (how far a point is from the nearest keep-out and from the keep-in edge).
@@ -22,6 +23,7 @@
 //! ```
 #![warn(missing_docs)]
 
+pub mod package;
 pub mod procedural;
 pub mod raster;
 pub mod raster_io;
