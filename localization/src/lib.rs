@@ -9,3 +9,5 @@
 
 pub mod census;
 pub mod hbs;
+pub mod matcher;
+pub mod synthetic;

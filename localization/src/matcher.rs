@@ -1,0 +1,594 @@
+//! One global localization: the rover orthomosaic (and DEM) matched against the orbital map around
+//! the prior position (paper 000 §5).
+//!
+//! 1. The rover orthomosaic is resampled in easting by the map's scale factor (the orbital map is
+//!    equirectangular with true scale at one latitude, Jezero's 18.4663°; at another latitude a
+//!    map metre east is not a ground metre). See [`easting_scale`].
+//! 2. The orbital appearance is cropped to the search window (prior ± search radius) and both are
+//!    census-transformed; [`hamming_scores`] scores every 25 cm offset exactly.
+//! 3. With DEMs, the mean-removed sum of squared height differences per valid cell is computed at
+//!    every 1 m offset, mapped to `[0, 1)` as `msd / (msd + dem_scale²)` and interpolated onto the
+//!    appearance offsets; the two are summed with appearance weighted more.
+//! 4. The best offset is refined to sub-pixel by the quadratic fit of [`subpixel_peak`].
+//! 5. Confidence: σ from the fitted curvature and the binomial noise of the best score, the ratio of
+//!    the best score outside the peak's neighbourhood to the best, and the fraction of valid
+//!    pixels; validity checks turn any of them out of bounds into a rejection with a reason.
+//!
+//! ## References
+//! Paper 000 §4 (accuracy, search radius), §5 (census matching, DEM SSD, sub-pixel fit, easting
+//! scale), §7 (validity checks before the result is applied).
+
+use maps::{GeoTransform, Raster};
+
+use crate::census::{MatchError, census_transform_raster, hamming_scores, subpixel_peak};
+
+/// Latitude of true scale of the Jezero orbital maps, degrees (paper 000 §5).
+pub const JEZERO_TRUE_SCALE_LATITUDE_DEG: f64 = 18.4663;
+
+/// Map metres east per ground metre east at `latitude_deg` on an equirectangular map with true
+/// scale at `true_scale_latitude_deg`: `cos φ₀ / cos φ`.
+#[must_use]
+pub fn easting_scale(latitude_deg: f64, true_scale_latitude_deg: f64) -> f64 {
+    true_scale_latitude_deg.to_radians().cos() / latitude_deg.to_radians().cos()
+}
+
+/// Matcher settings (plain struct; units and defaults on each field).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct MatchParams {
+    /// Search radius around the prior, metres (default: 30, paper 000 §4; up to 100).
+    pub search_radius_m: f64,
+    /// Weight of the appearance (census) score (default: 1.0).
+    pub appearance_weight: f64,
+    /// Weight of the DEM score (default: 0.3 — appearance weighted more).
+    pub dem_weight: f64,
+    /// Height misfit at which the DEM score is one half, metres (default: 0.3).
+    pub dem_scale_m: f64,
+    /// Site latitude for the easting scale correction, degrees (default: 18.4663, no correction).
+    pub latitude_deg: f64,
+    /// Latitude of true scale of the map, degrees (default: 18.4663, Jezero).
+    pub true_scale_latitude_deg: f64,
+    /// Peaks closer than this to the best are the same peak, metres (default: 2.0).
+    pub peak_exclusion_m: f64,
+    /// Reject unless the best score elsewhere is at least this many times the best (default: 1.15).
+    pub min_peak_ratio: f64,
+    /// Reject when the estimated σ exceeds this, metres (default: 1.5).
+    pub max_sigma_m: f64,
+    /// Reject when fewer than this fraction of the orthomosaic pixels are valid (default: 0.1).
+    pub min_valid_fraction: f64,
+}
+
+impl Default for MatchParams {
+    fn default() -> Self {
+        Self {
+            search_radius_m: 30.0,
+            appearance_weight: 1.0,
+            dem_weight: 0.3,
+            dem_scale_m: 0.3,
+            latitude_deg: JEZERO_TRUE_SCALE_LATITUDE_DEG,
+            true_scale_latitude_deg: JEZERO_TRUE_SCALE_LATITUDE_DEG,
+            peak_exclusion_m: 2.0,
+            min_peak_ratio: 1.15,
+            max_sigma_m: 1.5,
+            min_valid_fraction: 0.1,
+        }
+    }
+}
+
+/// What the rover observed, centred on its true position (which it does not know).
+#[derive(Clone, Copy, Debug)]
+pub struct RoverImages<'a> {
+    /// Orthomosaic (same resolution as the orbital appearance); the rover is at its centre.
+    pub ortho: &'a Raster<u8>,
+    /// Validity of each orthomosaic pixel.
+    pub ortho_valid: &'a [bool],
+    /// Rover DEM and its validity (same resolution as the orbital DEM), if any.
+    pub dem: Option<(&'a Raster<f32>, &'a [bool])>,
+}
+
+/// The orbital map.
+#[derive(Clone, Copy, Debug)]
+pub struct OrbitalMap<'a> {
+    /// Appearance (orthoimage).
+    pub appearance: &'a Raster<u8>,
+    /// DEM, if any.
+    pub dem: Option<&'a Raster<f32>>,
+}
+
+/// Why a match was rejected by its validity checks.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub enum Rejection {
+    /// Too few valid orthomosaic pixels.
+    TooFewValid {
+        /// Fraction valid.
+        fraction: f64,
+    },
+    /// Another peak scores almost as well.
+    Ambiguous {
+        /// Best score elsewhere ÷ best score.
+        peak_ratio: f64,
+    },
+    /// The peak is too flat for the required accuracy.
+    Imprecise {
+        /// Estimated σ, metres.
+        sigma_m: f64,
+    },
+    /// The best offset lies on the edge of the search window (the truth may be outside it).
+    OnWindowEdge,
+}
+
+impl std::fmt::Display for Rejection {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Rejection::TooFewValid { fraction } => write!(
+                f,
+                "only {:.1} % of the orthomosaic is valid",
+                fraction * 100.0
+            ),
+            Rejection::Ambiguous { peak_ratio } => write!(
+                f,
+                "ambiguous match: second peak at {peak_ratio:.3} × the best score"
+            ),
+            Rejection::Imprecise { sigma_m } => write!(f, "peak too flat: σ = {sigma_m:.2} m"),
+            Rejection::OnWindowEdge => write!(f, "best offset on the edge of the search window"),
+        }
+    }
+}
+
+/// Result of one localization.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct MatchResult {
+    /// Estimated rover position, map metres.
+    pub position_m: [f64; 2],
+    /// Correction from the prior, metres (east, north).
+    pub correction_m: [f64; 2],
+    /// Estimated 1σ position uncertainty, metres.
+    pub sigma_m: f64,
+    /// Combined score at the peak (lower is better).
+    pub best_score: f64,
+    /// Best score outside the peak's neighbourhood ÷ best score (higher is more distinctive).
+    pub peak_ratio: f64,
+    /// Fraction of valid orthomosaic pixels.
+    pub valid_fraction: f64,
+    /// `None` if accepted, else why not.
+    pub rejection: Option<Rejection>,
+}
+
+/// Why a localization could not even be attempted (bad input).
+#[derive(Debug, thiserror::Error)]
+pub enum LocalizeError {
+    /// The orthomosaic and orbital resolutions differ.
+    #[error("orthomosaic resolution {ortho} m/px differs from the orbital map's {map} m/px")]
+    ResolutionMismatch {
+        /// Orthomosaic m/px.
+        ortho: f64,
+        /// Orbital m/px.
+        map: f64,
+    },
+    /// The search window around the prior leaves the orbital map.
+    #[error("the search window ({radius_m} m around the prior {prior_m:?}) leaves the orbital map")]
+    WindowOffMap {
+        /// Prior position.
+        prior_m: [f64; 2],
+        /// Search radius.
+        radius_m: f64,
+    },
+    /// No orthomosaic pixel is valid.
+    #[error("the orthomosaic has no valid pixels")]
+    NoValidPixels,
+    /// A census buffer was inconsistent.
+    #[error(transparent)]
+    Census(#[from] MatchError),
+}
+
+/// Resample `ortho` in x by `scale` (map metres per ground metre) about its centre, nearest
+/// neighbour, keeping its size; pixels that fall outside become invalid.
+fn rescale_easting(ortho: &Raster<u8>, valid: &[bool], scale: f64) -> (Raster<u8>, Vec<bool>) {
+    if (scale - 1.0).abs() < 1e-12 {
+        return (ortho.clone(), valid.to_vec());
+    }
+    let (w, h) = (ortho.width, ortho.height);
+    let cx = w as f64 / 2.0;
+    let mut out = Raster::filled(w, h, ortho.geo, 0u8);
+    let mut out_valid = vec![false; w * h];
+    for row in 0..h {
+        for col in 0..w {
+            let src = ((col as f64 + 0.5 - cx) / scale + cx - 0.5).round();
+            if src >= 0.0 && (src as usize) < w {
+                let i = row * w + src as usize;
+                out.data[row * w + col] = ortho.data[i];
+                out_valid[row * w + col] = valid[i];
+            }
+        }
+    }
+    (out, out_valid)
+}
+
+/// Crop `r` to `cols × rows` pixels starting at (`col0`, `row0`).
+fn crop<T: Copy>(r: &Raster<T>, col0: usize, row0: usize, cols: usize, rows: usize) -> Raster<T> {
+    let mut data = Vec::with_capacity(cols * rows);
+    for row in row0..row0 + rows {
+        data.extend_from_slice(&r.data[row * r.width + col0..row * r.width + col0 + cols]);
+    }
+    let (x, y) = r.geo.center_of(col0, row0);
+    let res = r.geo.resolution_m_per_px;
+    Raster {
+        width: cols,
+        height: rows,
+        geo: GeoTransform::new(x - res / 2.0, y + res / 2.0, res),
+        data,
+    }
+}
+
+/// Mean-removed DEM misfit at every integer offset of `rover` (template) inside `map`, mapped to
+/// `[0, 1)`; `+inf` where fewer than a quarter of the rover cells overlap valid map cells.
+fn dem_scores(
+    rover: &Raster<f32>,
+    rover_valid: &[bool],
+    map: &Raster<f32>,
+    dem_scale_m: f64,
+) -> (usize, usize, Vec<f64>) {
+    let (ow, oh) = (map.width + 1 - rover.width, map.height + 1 - rover.height);
+    let n_valid = rover_valid.iter().filter(|&&v| v).count();
+    let mut out = vec![f64::INFINITY; ow * oh];
+    for dy in 0..oh {
+        for dx in 0..ow {
+            let (mut n, mut sd, mut sdd) = (0usize, 0.0f64, 0.0f64);
+            for y in 0..rover.height {
+                for x in 0..rover.width {
+                    let i = y * rover.width + x;
+                    let m = map.data[(y + dy) * map.width + x + dx];
+                    if rover_valid[i] && m.is_finite() {
+                        let d = f64::from(rover.data[i]) - f64::from(m);
+                        n += 1;
+                        sd += d;
+                        sdd += d * d;
+                    }
+                }
+            }
+            if n * 4 >= n_valid.max(1) {
+                let mean = sd / n as f64;
+                let msd = (sdd / n as f64 - mean * mean).max(0.0);
+                out[dy * ow + dx] = msd / (msd + dem_scale_m * dem_scale_m);
+            }
+        }
+    }
+    (ow, oh, out)
+}
+
+/// Localize: match the rover's images against the orbital map around `prior_m`.
+pub fn localize(
+    orbital: &OrbitalMap<'_>,
+    rover: &RoverImages<'_>,
+    prior_m: [f64; 2],
+    p: &MatchParams,
+) -> Result<MatchResult, LocalizeError> {
+    let map = orbital.appearance;
+    let res = map.geo.resolution_m_per_px;
+    if (rover.ortho.geo.resolution_m_per_px - res).abs() > 1e-9 {
+        return Err(LocalizeError::ResolutionMismatch {
+            ortho: rover.ortho.geo.resolution_m_per_px,
+            map: res,
+        });
+    }
+    let valid_fraction = rover.ortho_valid.iter().filter(|&&v| v).count() as f64
+        / rover.ortho_valid.len().max(1) as f64;
+    if valid_fraction == 0.0 {
+        return Err(LocalizeError::NoValidPixels);
+    }
+    let (ortho, ortho_valid) = rescale_easting(
+        rover.ortho,
+        rover.ortho_valid,
+        easting_scale(p.latitude_deg, p.true_scale_latitude_deg),
+    );
+    let (tw, th) = (ortho.width, ortho.height);
+    let radius_px = (p.search_radius_m / res).ceil() as usize;
+    // The template's north-west corner sits at the prior minus half the template.
+    let (pc, pr) = map.geo.pixel_of(prior_m[0], prior_m[1]);
+    let c0 = pc - tw as f64 / 2.0 - radius_px as f64;
+    let r0 = pr - th as f64 / 2.0 - radius_px as f64;
+    let (cols, rows) = (tw + 2 * radius_px, th + 2 * radius_px);
+    let off_map = || LocalizeError::WindowOffMap {
+        prior_m,
+        radius_m: p.search_radius_m,
+    };
+    if !(c0 >= 0.0 && r0 >= 0.0)
+        || c0.round() as usize + cols > map.width
+        || r0.round() as usize + rows > map.height
+    {
+        return Err(off_map());
+    }
+    let (c0, r0) = (c0.round() as usize, r0.round() as usize);
+    let window = crop(map, c0, r0, cols, rows);
+    let map_census = census_transform_raster(&window, &vec![true; cols * rows])?;
+    let template = census_transform_raster(&ortho, &ortho_valid)?;
+    let scores = hamming_scores(&template, &map_census)?;
+    let (sw, sh) = (scores.width, scores.height);
+    let mut combined: Vec<f64> = scores
+        .normalized_scores()
+        .iter()
+        .map(|s| p.appearance_weight * s)
+        .collect();
+
+    if let (Some((rdem, rvalid)), Some(mdem)) = (rover.dem, orbital.dem) {
+        let dres = mdem.geo.resolution_m_per_px;
+        let k = (dres / res).round().max(1.0) as usize;
+        // The DEM window covering the appearance window (whole DEM cells).
+        let (x0, y0) = window.geo.center_of(0, 0);
+        let (dc, dr) = mdem.geo.pixel_of(x0, y0);
+        let (dc0, dr0) = (dc.floor() as isize, dr.floor() as isize);
+        let dcols = rdem.width + 2 * (radius_px / k) + 2;
+        let drows = rdem.height + 2 * (radius_px / k) + 2;
+        if dc0 >= 0
+            && dr0 >= 0
+            && dc0 as usize + dcols <= mdem.width
+            && dr0 as usize + drows <= mdem.height
+        {
+            let dwin = crop(mdem, dc0 as usize, dr0 as usize, dcols, drows);
+            let (ow, oh, ds) = dem_scores(rdem, rvalid, &dwin, p.dem_scale_m);
+            // Appearance offset (ax, ay) puts the template's NW corner at window pixel (ax, ay);
+            // the rover DEM's NW corner is the template's (both centred on the rover).
+            let (tx0, ty0) = (window.geo.origin_m[0], window.geo.origin_m[1]);
+            let (rx_off, ry_off) = (
+                (tw as f64 * res - rdem.width as f64 * dres) / 2.0,
+                (th as f64 * res - rdem.height as f64 * dres) / 2.0,
+            );
+            for ay in 0..sh {
+                for ax in 0..sw {
+                    let x = tx0 + ax as f64 * res + rx_off;
+                    let y = ty0 - ay as f64 * res - ry_off;
+                    let fx = (x - dwin.geo.origin_m[0]) / dres;
+                    let fy = (dwin.geo.origin_m[1] - y) / dres;
+                    combined[ay * sw + ax] += p.dem_weight * bilinear(&ds, ow, oh, fx, fy);
+                }
+            }
+        }
+    }
+
+    let best = (0..combined.len())
+        .filter(|&i| combined[i].is_finite())
+        .min_by(|&a, &b| combined[a].total_cmp(&combined[b]).then(a.cmp(&b)))
+        .ok_or(LocalizeError::NoValidPixels)?;
+    let (bx, by) = (best % sw, best / sw);
+    let best_score = combined[best];
+    let (fx, fy, sigma_px) = match subpixel_peak(&combined, sw, sh, (bx, by)) {
+        Some((dx, dy, curv)) => {
+            // Binomial noise of a fraction of disagreeing bits, propagated through the fitted
+            // bowl: var(position) ≈ var(score) / smallest curvature (per px²).
+            let bits = f64::from(scores.valid[best].max(1));
+            let s = best_score.clamp(1e-6, 1.0 - 1e-6);
+            let var_score = s * (1.0 - s) / bits;
+            let tr = curv.f_xx + curv.f_yy;
+            let det = curv.determinant();
+            let lambda_min = 0.5 * (tr - (tr * tr - 4.0 * det).max(0.0).sqrt());
+            let sigma = if lambda_min > 0.0 {
+                (2.0 * var_score / lambda_min).sqrt()
+            } else {
+                f64::INFINITY
+            };
+            (dx, dy, sigma.max(1.0 / 12f64.sqrt()))
+        }
+        None => (0.0, 0.0, f64::INFINITY),
+    };
+    let exclusion_px = (p.peak_exclusion_m / res).ceil() as isize;
+    let second = (0..combined.len())
+        .filter(|&i| {
+            let (x, y) = ((i % sw) as isize, (i / sw) as isize);
+            (x - bx as isize).abs() > exclusion_px || (y - by as isize).abs() > exclusion_px
+        })
+        .map(|i| combined[i])
+        .fold(f64::INFINITY, f64::min);
+    let peak_ratio = if best_score > 0.0 {
+        second / best_score
+    } else {
+        f64::INFINITY
+    };
+
+    // Offset (bx, by) puts the template NW corner at window pixel (bx, by): the rover (template
+    // centre) is at that pixel's corner + half the template.
+    let (wx0, wy0) = (window.geo.origin_m[0], window.geo.origin_m[1]);
+    let x = wx0 + (bx as f64 + fx) * res + tw as f64 * res / 2.0;
+    let y = wy0 - (by as f64 + fy) * res - th as f64 * res / 2.0;
+    let sigma_m = sigma_px * res;
+    let rejection = if valid_fraction < p.min_valid_fraction {
+        Some(Rejection::TooFewValid {
+            fraction: valid_fraction,
+        })
+    } else if bx == 0 || by == 0 || bx + 1 == sw || by + 1 == sh {
+        Some(Rejection::OnWindowEdge)
+    } else if peak_ratio < p.min_peak_ratio {
+        Some(Rejection::Ambiguous { peak_ratio })
+    } else if sigma_m > p.max_sigma_m {
+        Some(Rejection::Imprecise { sigma_m })
+    } else {
+        None
+    };
+    Ok(MatchResult {
+        position_m: [x, y],
+        correction_m: [x - prior_m[0], y - prior_m[1]],
+        sigma_m,
+        best_score,
+        peak_ratio,
+        valid_fraction,
+        rejection,
+    })
+}
+
+/// Bilinear interpolation of a `w × h` grid whose sample `(i, j)` sits at coordinate `(i, j)`,
+/// clamped at the edges.
+fn bilinear(g: &[f64], w: usize, h: usize, fx: f64, fy: f64) -> f64 {
+    let x = fx.clamp(0.0, (w - 1) as f64);
+    let y = fy.clamp(0.0, (h - 1) as f64);
+    let (x0, y0) = (x.floor() as usize, y.floor() as usize);
+    let (x1, y1) = ((x0 + 1).min(w - 1), (y0 + 1).min(h - 1));
+    let (tx, ty) = (x - x0 as f64, y - y0 as f64);
+    let top = g[y0 * w + x0] * (1.0 - tx) + g[y0 * w + x1] * tx;
+    let bottom = g[y1 * w + x0] * (1.0 - tx) + g[y1 * w + x1] * tx;
+    top * (1.0 - ty) + bottom * ty
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn easting_scale_is_one_at_true_scale_and_grows_poleward() {
+        assert!((easting_scale(18.4663, 18.4663) - 1.0).abs() < 1e-15);
+        assert!(easting_scale(30.0, 18.4663) > 1.0);
+        assert!((easting_scale(60.0, 0.0) - 2.0).abs() < 1e-12);
+    }
+
+    /// A smooth random texture (sum of seeded sinusoids), 0..255.
+    fn texture(w: usize, h: usize, geo: GeoTransform, seed: u64) -> Raster<u8> {
+        let mut r = Raster::filled(w, h, geo, 0u8);
+        let mut s = seed;
+        let mut next = || {
+            s = s
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let waves: Vec<(f64, f64, f64)> = (0..24)
+            .map(|_| (next() * 1.2 - 0.6, next() * 1.2 - 0.6, next() * 6.3))
+            .collect();
+        for row in 0..h {
+            for col in 0..w {
+                let v: f64 = waves
+                    .iter()
+                    .map(|(a, b, ph)| (a * col as f64 + b * row as f64 + ph).sin())
+                    .sum();
+                r.set(col, row, (128.0 + 20.0 * v).clamp(0.0, 255.0) as u8);
+            }
+        }
+        r
+    }
+
+    #[test]
+    fn recovers_a_planted_offset_and_rejects_featureless_terrain() {
+        let geo = GeoTransform::new(0.0, 200.0, 0.25);
+        let map = texture(800, 800, geo, 7);
+        // The rover is truly at (100, 90); the prior is 11.5 m east, 7.25 m south of it.
+        let truth = [100.0, 90.0];
+        let (tc, tr) = map.geo.pixel_of(truth[0], truth[1]);
+        let (c0, r0) = (tc as usize - 120, tr as usize - 120);
+        let mut ortho = crop(&map, c0, r0, 240, 240);
+        // A different monotonic camera response: census does not care.
+        for v in &mut ortho.data {
+            *v = (f64::from(*v).powf(0.8) * 2.0).min(255.0) as u8;
+        }
+        let mut valid = vec![true; 240 * 240];
+        for (i, v) in valid.iter_mut().enumerate() {
+            if (i % 240) < 60 {
+                *v = false; // a rear wedge without data
+            }
+        }
+        let rover = RoverImages {
+            ortho: &ortho,
+            ortho_valid: &valid,
+            dem: None,
+        };
+        let orbital = OrbitalMap {
+            appearance: &map,
+            dem: None,
+        };
+        let prior = [truth[0] + 11.5, truth[1] - 7.25];
+        let m = localize(&orbital, &rover, prior, &MatchParams::default()).unwrap();
+        let err = (m.position_m[0] - truth[0]).hypot(m.position_m[1] - truth[1]);
+        assert!(err < 0.05, "{m:?}");
+        assert_eq!(m.rejection, None, "{m:?}");
+        assert!(m.peak_ratio > 1.5 && m.sigma_m < 0.5, "{m:?}");
+
+        // A flat grey orthomosaic cannot be matched: rejected, not applied.
+        let flat = Raster::filled(240, 240, geo, 128u8);
+        let rover = RoverImages {
+            ortho: &flat,
+            ortho_valid: &valid,
+            dem: None,
+        };
+        let m = localize(&orbital, &rover, prior, &MatchParams::default()).unwrap();
+        assert!(m.rejection.is_some(), "{m:?}");
+    }
+
+    #[test]
+    fn dem_term_keeps_the_planted_offset() {
+        let geo = GeoTransform::new(0.0, 200.0, 0.25);
+        let map = texture(800, 800, geo, 11);
+        // Orbital DEM at 1 m: heights from another texture (metres, ~±2 m).
+        let dem_u8 = texture(200, 200, GeoTransform::new(0.0, 200.0, 1.0), 12);
+        let dem = Raster {
+            data: dem_u8.data.iter().map(|&v| f32::from(v) / 20.0).collect(),
+            width: dem_u8.width,
+            height: dem_u8.height,
+            geo: dem_u8.geo,
+        };
+        let truth = [100.0, 90.0];
+        let (tc, tr) = map.geo.pixel_of(truth[0], truth[1]);
+        let ortho = crop(&map, tc as usize - 120, tr as usize - 120, 240, 240);
+        let (dc, dr) = dem.geo.pixel_of(truth[0], truth[1]);
+        let mut rdem = crop(&dem, dc as usize - 30, dr as usize - 30, 60, 60);
+        for v in &mut rdem.data {
+            *v += 3.0; // the rover's heights have an unknown vertical offset
+        }
+        let valid = vec![true; 240 * 240];
+        let dvalid = vec![true; 60 * 60];
+        let rover = RoverImages {
+            ortho: &ortho,
+            ortho_valid: &valid,
+            dem: Some((&rdem, &dvalid)),
+        };
+        let orbital = OrbitalMap {
+            appearance: &map,
+            dem: Some(&dem),
+        };
+        let m = localize(
+            &orbital,
+            &rover,
+            [truth[0] - 6.0, truth[1] + 9.5],
+            &MatchParams::default(),
+        )
+        .unwrap();
+        let err = (m.position_m[0] - truth[0]).hypot(m.position_m[1] - truth[1]);
+        assert!(err < 0.05 && m.rejection.is_none(), "{m:?}");
+    }
+
+    #[test]
+    fn bad_inputs_are_errors() {
+        let geo = GeoTransform::new(0.0, 150.0, 0.25);
+        let map = texture(600, 600, geo, 1);
+        let ortho = crop(&map, 0, 0, 240, 240);
+        let valid = vec![true; 240 * 240];
+        let orbital = OrbitalMap {
+            appearance: &map,
+            dem: None,
+        };
+        let rover = RoverImages {
+            ortho: &ortho,
+            ortho_valid: &valid,
+            dem: None,
+        };
+        assert!(matches!(
+            localize(&orbital, &rover, [10.0, 10.0], &MatchParams::default()),
+            Err(LocalizeError::WindowOffMap { .. })
+        ));
+        let none = vec![false; 240 * 240];
+        let rover = RoverImages {
+            ortho: &ortho,
+            ortho_valid: &none,
+            dem: None,
+        };
+        assert!(matches!(
+            localize(&orbital, &rover, [75.0, 75.0], &MatchParams::default()),
+            Err(LocalizeError::NoValidPixels)
+        ));
+        let coarse = Raster::filled(60, 60, GeoTransform::new(0.0, 150.0, 1.0), 0u8);
+        let rover = RoverImages {
+            ortho: &coarse,
+            ortho_valid: &valid[..3600],
+            dem: None,
+        };
+        assert!(matches!(
+            localize(&orbital, &rover, [75.0, 75.0], &MatchParams::default()),
+            Err(LocalizeError::ResolutionMismatch { .. })
+        ));
+    }
+}

@@ -1,0 +1,146 @@
+//! Synthetic imagery for onboard global localization: a seeded truth terrain, the orbital map
+//! made from it, and the rover's post-drive orthomosaic of it (paper 000 §4-§5).
+//!
+//! The matcher needs pairs of images that differ the way a HiRISE map and a NavCam panorama
+//! differ, with the rover's true position known. Three steps make them:
+//!
+//! 1. [`truth_patch`] — a 0.25 m [`TruthPatch`] of heights and albedos around a map point: the
+//!    map DEM, fine fBm detail, and rocks whose density follows the terrain class (bedrock
+//!    rocky, soil some, sand almost none); albedo by class with seeded texture.
+//! 2. [`render_orbital`] — the HiRISE stand-in ([`OrbitalProducts`]): Lambertian shading under
+//!    a mid-afternoon sun with cast shadows, a Gaussian PSF, noise and a gamma, quantised to a
+//!    25 cm u8 image; and a 1 m DEM, the block mean of the truth.
+//! 3. [`render_rover`] — the post-drive NavCam orthomosaic ([`RoverObservation`]): 3–5 stereo
+//!    wedges of 96° from a 2 m mast, a 30 m range limit, the rover body masked, occlusion by
+//!    line of sight over the truth heights, stereo errors growing with range², a different
+//!    (late-afternoon) sun than orbit, a different monotonic response per wedge, sensor noise;
+//!    and a 1 m rover DEM where enough samples were seen.
+//!
+//! Settings are plain structs ([`OrbitalParams`], [`RoverImagingParams`]); bad input is a
+//! [`SyntheticError`]. Every pixel is a pure function of (seed, position) through hash-based
+//! noise, and the few per-observation draws (sun, wedge responses) come from one
+//! `ChaCha8Rng`, so a seed gives byte-identical images on any number of threads.
+//!
+//! ```
+//! use localization::synthetic::{
+//!     OrbitalParams, RoverImagingParams, render_orbital, render_rover, truth_patch,
+//! };
+//! use maps::{GeoTransform, MapLayers, Raster};
+//!
+//! // A flat 200 m soil map of 1 m pixels.
+//! let geo = GeoTransform::new(0.0, 200.0, 1.0);
+//! let layers = MapLayers {
+//!     appearance: Raster::filled(200, 200, geo, 0),
+//!     dem: Raster::filled(200, 200, geo, 100.0),
+//!     terrain: Raster::filled(200, 200, geo, 2),
+//! };
+//! let patch = truth_patch(&layers, [100.0, 100.0], 40.0, 7)?;
+//! let orbital = render_orbital(&patch, &OrbitalParams::default(), 8)?;
+//! let rover = render_rover(&patch, [100.3, 99.6], &RoverImagingParams::default(), 9)?;
+//! assert_eq!((orbital.appearance.width, orbital.dem.width), (320, 80));
+//! assert_eq!((rover.ortho.width, rover.dem.width), (240, 60));
+//! assert!(rover.valid_fraction() > 0.3);
+//! # Ok::<(), localization::synthetic::SyntheticError>(())
+//! ```
+//!
+//! ## References
+//! - Paper 000 §4 (post-drive NavCam panoramas of 3–5 stereo wedges with a 96° field of view;
+//!   orbital images acquired mid-afternoon; robustness to lighting differences) and §5 (the
+//!   rover stereo orthomosaic gridded at 25 cm with a 1 m DEM, occlusions by rocks and the
+//!   rover body, different camera responses between wedges — Fig. 13 —, the HiRISE 25 cm
+//!   orthoimage and 1 m DTM).
+//! - M. P. Golombek and D. Rapp, "Size-frequency distributions of rocks on Mars and Earth
+//!   analog sites", J. Geophys. Res. 102, 1997 (rock populations by terrain).
+
+mod noise;
+mod orbital;
+mod rover;
+mod rover_params;
+mod shading;
+mod truth;
+
+pub use orbital::{OrbitalParams, OrbitalProducts, render_orbital};
+pub use rover::{RoverLighting, RoverObservation, WedgeResponse, render_rover};
+pub use rover_params::RoverImagingParams;
+pub use truth::{TruthPatch, truth_patch};
+
+/// Pixel size of the truth patch and of the orbital appearance image, metres (HiRISE, 25 cm).
+pub const TRUTH_RESOLUTION_M_PER_PX: f64 = 0.25;
+/// Pixel size of the orbital DEM, metres (the HiRISE DTM, 1 m).
+pub const ORBITAL_DEM_RESOLUTION_M_PER_PX: f64 = 1.0;
+/// Width and height of the rover orthomosaic, pixels (60 m at 25 cm).
+pub const ORTHO_SIZE_PX: usize = 240;
+/// Pixel size of the rover orthomosaic, metres.
+pub const ORTHO_RESOLUTION_M_PER_PX: f64 = 0.25;
+/// Ortho pixels per rover DEM cell along each axis (1 m cells).
+pub const ROVER_DEM_BLOCK_PX: usize = 4;
+
+/// Why synthetic imagery could not be made (bad input, not a bad outcome).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum SyntheticError {
+    /// The requested truth patch is not entirely on the map.
+    #[error(
+        "patch {patch_extent_m:?} leaves the map's {layer} layer {map_extent_m:?} (x0, y0, x1, y1 in m)"
+    )]
+    PatchOutsideMap {
+        /// The map layer it leaves: `"dem"` or `"terrain"`.
+        layer: &'static str,
+        /// Patch extent `[min_x, min_y, max_x, max_y]`, metres.
+        patch_extent_m: [f64; 4],
+        /// That layer's extent `[min_x, min_y, max_x, max_y]`, metres.
+        map_extent_m: [f64; 4],
+    },
+    /// The rover position is not on the truth patch.
+    #[error(
+        "rover at {rover_m:?} m is off the truth patch {patch_extent_m:?} (x0, y0, x1, y1 in m)"
+    )]
+    RoverOutsidePatch {
+        /// Requested rover position (x east, y north), metres.
+        rover_m: [f64; 2],
+        /// Patch extent `[min_x, min_y, max_x, max_y]`, metres.
+        patch_extent_m: [f64; 4],
+    },
+    /// A hand-built truth patch whose rasters disagree: different sizes, or a sample count
+    /// that is not width × height.
+    #[error(
+        "malformed truth patch: height {height_px:?} px with {height_samples} samples, albedo {albedo_px:?} px with {albedo_samples} samples"
+    )]
+    MalformedPatch {
+        /// Width and height of the height raster, pixels.
+        height_px: [usize; 2],
+        /// Samples in the height raster.
+        height_samples: usize,
+        /// Width and height of the albedo raster, pixels.
+        albedo_px: [usize; 2],
+        /// Samples in the albedo raster.
+        albedo_samples: usize,
+    },
+    /// A parameter is outside the range its documentation gives.
+    #[error("{field} = {value} is invalid: expected {expected}")]
+    InvalidParameter {
+        /// Name of the argument or params field.
+        field: &'static str,
+        /// The value given (counts are converted to `f64`).
+        value: f64,
+        /// What was expected.
+        expected: &'static str,
+    },
+}
+
+/// `Ok` if `ok(value)`, else [`SyntheticError::InvalidParameter`].
+fn check_param(
+    field: &'static str,
+    value: f64,
+    expected: &'static str,
+    ok: impl Fn(f64) -> bool,
+) -> Result<(), SyntheticError> {
+    if ok(value) {
+        Ok(())
+    } else {
+        Err(SyntheticError::InvalidParameter {
+            field,
+            value,
+            expected,
+        })
+    }
+}

@@ -1,0 +1,494 @@
+//! Shared rendering pieces: bilinear heights, Lambertian shading, cast shadows and blur.
+//!
+//! Coordinates here are *pixel-centre* coordinates of a truth grid: `(c, r) = (0, 0)` is the
+//! centre of pixel (0, 0), `c` grows east and `r` grows south (the `maps` raster convention).
+
+use maps::Raster;
+use rayon::prelude::*;
+
+/// Heights below the shadow or sight ray by less than this do not block it (metres): the
+/// bilinear surface between pixel centres is not the surface the pixels were shaded with.
+const RAY_CLEARANCE_M: f32 = 0.02;
+
+/// Tile sizes of the skip levels as powers of two (64, 16 and 4 pixels), coarsest first. A ray
+/// whose points stay above the highest sample of the 3 × 3 tiles around its current point skips
+/// a tile size of steps at once.
+const SKIP_TILE_SHIFTS: [u32; 3] = [6, 4, 2];
+
+/// A straight ray over the grid: point `k` is at `start + step × k` (pixel-centre coordinates)
+/// with height `z0 + dz × k` (metres).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Ray {
+    pub(super) start: [f64; 2],
+    pub(super) step: [f64; 2],
+    pub(super) z0: f64,
+    pub(super) dz: f64,
+}
+
+impl Ray {
+    #[inline]
+    fn at(&self, k: usize) -> (f64, f64) {
+        let t = k as f64;
+        (
+            self.start[0] + self.step[0] * t,
+            self.start[1] + self.step[1] * t,
+        )
+    }
+
+    #[inline]
+    fn z(&self, k: usize) -> f32 {
+        (self.z0 + self.dz * k as f64) as f32
+    }
+}
+
+/// Maxima of one skip level: per tile, the highest sample that a bilinear lookup at any point
+/// within `tile_px − 1` pixels of a point in that tile can read.
+#[derive(Clone, Debug)]
+struct SkipLevel {
+    tile_px: usize,
+    /// `tile_px = 1 << shift`: a shift, not a division, in the hot loop.
+    shift: u32,
+    tiles_x: usize,
+    max_near: Vec<f32>,
+}
+
+impl SkipLevel {
+    fn new(data: &[f32], w: usize, h: usize, shift: u32) -> Self {
+        let tile_px = 1usize << shift;
+        let (tiles_x, tiles_y) = (w.div_ceil(tile_px), h.div_ceil(tile_px));
+        // A tile's own maximum includes one pixel east and south: bilinear reads them.
+        let mut own = vec![f32::NEG_INFINITY; tiles_x * tiles_y];
+        for (t, m) in own.iter_mut().enumerate() {
+            let (tx, ty) = (t % tiles_x, t / tiles_x);
+            for row in ty * tile_px..=((ty + 1) * tile_px).min(h - 1) {
+                for col in tx * tile_px..=((tx + 1) * tile_px).min(w - 1) {
+                    *m = m.max(data[row * w + col]);
+                }
+            }
+        }
+        // Points up to tile_px − 1 away read at most one tile further in each direction.
+        let max_near = (0..tiles_x * tiles_y)
+            .map(|t| {
+                let (tx, ty) = (t % tiles_x, t / tiles_x);
+                let mut m = f32::NEG_INFINITY;
+                for ny in ty.saturating_sub(1)..=(ty + 1).min(tiles_y - 1) {
+                    for nx in tx.saturating_sub(1)..=(tx + 1).min(tiles_x - 1) {
+                        m = m.max(own[ny * tiles_x + nx]);
+                    }
+                }
+                m
+            })
+            .collect();
+        Self {
+            tile_px,
+            shift,
+            tiles_x,
+            max_near,
+        }
+    }
+}
+
+/// A read-only view of a height grid with its pixel size, highest sample and skip levels.
+#[derive(Clone, Debug)]
+pub(super) struct HeightField<'a> {
+    pub(super) data: &'a [f32],
+    pub(super) width: usize,
+    pub(super) height: usize,
+    pub(super) resolution_m: f64,
+    pub(super) max_m: f32,
+    levels: Vec<SkipLevel>,
+}
+
+impl<'a> HeightField<'a> {
+    /// A view of `raster` (heights in metres).
+    pub(super) fn new(raster: &'a Raster<f32>) -> Self {
+        let (w, h) = (raster.width, raster.height);
+        let levels = if w == 0 || h == 0 {
+            Vec::new()
+        } else {
+            SKIP_TILE_SHIFTS
+                .iter()
+                .map(|&shift| SkipLevel::new(&raster.data, w, h, shift))
+                .collect()
+        };
+        Self {
+            data: &raster.data,
+            width: w,
+            height: h,
+            resolution_m: raster.geo.resolution_m_per_px,
+            max_m: raster
+                .data
+                .iter()
+                .copied()
+                .fold(f32::NEG_INFINITY, f32::max),
+            levels,
+        }
+    }
+
+    /// Whether pixel-centre coordinates `(c, r)` lie on the grid (within half a pixel).
+    #[inline]
+    pub(super) fn contains(&self, c: f64, r: f64) -> bool {
+        c >= -0.5 && r >= -0.5 && c < self.width as f64 - 0.5 && r < self.height as f64 - 0.5
+    }
+
+    /// Height at pixel `(col, row)`.
+    #[inline]
+    pub(super) fn at(&self, col: usize, row: usize) -> f32 {
+        self.data[row * self.width + col]
+    }
+
+    /// Bilinear height at pixel-centre coordinates `(c, r)`, clamped at the edges.
+    #[inline]
+    pub(super) fn bilinear(&self, c: f64, r: f64) -> f32 {
+        bilinear(self.data, self.width, self.height, c, r)
+    }
+
+    /// The highest sample that bilinear lookups within `level.tile_px − 1` pixels of point
+    /// `(c, r)` can read.
+    #[inline]
+    fn max_near(&self, level: &SkipLevel, c: f64, r: f64) -> f32 {
+        // Clamping is 1-Lipschitz, so clamped points stay as close as the points themselves.
+        let tx = (c.clamp(0.0, (self.width - 1) as f64) as usize) >> level.shift;
+        let ty = (r.clamp(0.0, (self.height - 1) as f64) as usize) >> level.shift;
+        level.max_near[ty * level.tiles_x + tx]
+    }
+
+    /// Cosine of the angle between the surface normal at pixel `(col, row)` (central
+    /// differences, one-sided at the edges) and the unit vector `sun` (x east, y north, z up).
+    pub(super) fn cos_incidence(&self, col: usize, row: usize, sun: [f64; 3]) -> f64 {
+        let (w, h) = (self.width, self.height);
+        let (west, east) = (col.saturating_sub(1), (col + 1).min(w - 1));
+        let (north, south) = (row.saturating_sub(1), (row + 1).min(h - 1));
+        let res = self.resolution_m;
+        let dz_dx = f64::from(self.at(east, row) - self.at(west, row))
+            / ((east - west).max(1) as f64 * res);
+        let dz_dy = f64::from(self.at(col, north) - self.at(col, south))
+            / ((south - north).max(1) as f64 * res);
+        (-dz_dx * sun[0] - dz_dy * sun[1] + sun[2]) / (1.0 + dz_dx * dz_dx + dz_dy * dz_dy).sqrt()
+    }
+
+    /// Whether the terrain rises more than [`RAY_CLEARANCE_M`] above `ray` at one of its points
+    /// `1..=k_last`; the ray's steps must be at most one pixel long. The march ends without a
+    /// hit where the ray leaves the grid or, rising, clears the highest sample. Runs of points
+    /// that stay above the tile maxima around them are skipped whole; the answer is exactly
+    /// that of [`HeightField::ray_hits_reference`] (the grid is convex and a rising ray stays
+    /// risen, so nothing skipped could have ended the march differently).
+    pub(super) fn ray_hits(&self, ray: &Ray, k_last: usize) -> bool {
+        let Some(finest) = self.levels.last() else {
+            return false;
+        };
+        let mut k = 1;
+        'march: while k <= k_last {
+            let (c, r) = ray.at(k);
+            if !self.contains(c, r) || (ray.dz >= 0.0 && ray.z(k) > self.max_m) {
+                return false;
+            }
+            for level in &self.levels {
+                let k_end = k.saturating_add(level.tile_px - 1).min(k_last);
+                let z_low = ray.z(k).min(ray.z(k_end));
+                // 1 mm absorbs the rounding of a bilinear blend above its largest corner.
+                if z_low + RAY_CLEARANCE_M > self.max_near(level, c, r) + 1e-3 {
+                    if k_end == k_last {
+                        return false;
+                    }
+                    k = k_end + 1;
+                    continue 'march;
+                }
+            }
+            let k_end = k.saturating_add(finest.tile_px - 1).min(k_last);
+            for kk in k..=k_end {
+                let (c, r) = ray.at(kk);
+                let z = ray.z(kk);
+                if !self.contains(c, r) || (ray.dz >= 0.0 && z > self.max_m) {
+                    return false;
+                }
+                if self.bilinear(c, r) > z + RAY_CLEARANCE_M {
+                    return true;
+                }
+            }
+            if k_end == k_last {
+                return false;
+            }
+            k = k_end + 1;
+        }
+        false
+    }
+
+    /// [`HeightField::ray_hits`] one point at a time: the reference it is tested against.
+    #[cfg(test)]
+    pub(super) fn ray_hits_reference(&self, ray: &Ray, k_last: usize) -> bool {
+        for k in 1..=k_last {
+            let (c, r) = ray.at(k);
+            let z = ray.z(k);
+            if !self.contains(c, r) || (ray.dz >= 0.0 && z > self.max_m) {
+                return false;
+            }
+            if self.bilinear(c, r) > z + RAY_CLEARANCE_M {
+                return true;
+            }
+        }
+        false
+    }
+
+    /// The ray from pixel `(col, row)` towards the sun, one pixel per step.
+    pub(super) fn sun_ray(&self, col: usize, row: usize, sun: &Sun) -> Ray {
+        Ray {
+            start: [col as f64, row as f64],
+            step: [sun.step_col, sun.step_row],
+            z0: f64::from(self.at(col, row)),
+            dz: sun.rise_per_step_m,
+        }
+    }
+
+    /// Whether pixel `(col, row)` sees the sun: march towards it and report a shadow if the
+    /// terrain rises above the ray. Terrain beyond the grid casts no shadow.
+    pub(super) fn sunlit(&self, col: usize, row: usize, sun: &Sun) -> bool {
+        !self.ray_hits(&self.sun_ray(col, row, sun), usize::MAX)
+    }
+
+    /// The sight line from a camera at `camera` (pixel-centre coordinates, height `camera_z`)
+    /// to the surface at `target` (height `target_z`), one pixel per step, and the number of
+    /// steps to test: all but the last pixel before the target, so a surface does not hide
+    /// itself.
+    pub(super) fn sight_ray(
+        camera: [f64; 2],
+        camera_z: f32,
+        target: [f64; 2],
+        target_z: f32,
+    ) -> (Ray, usize) {
+        let (dc, dr) = (target[0] - camera[0], target[1] - camera[1]);
+        let dist_px = dc.hypot(dr);
+        if dist_px <= 1.0 {
+            let still = Ray {
+                start: camera,
+                step: [0.0, 0.0],
+                z0: f64::from(camera_z),
+                dz: 0.0,
+            };
+            return (still, 0);
+        }
+        let ray = Ray {
+            start: camera,
+            step: [dc / dist_px, dr / dist_px],
+            z0: f64::from(camera_z),
+            dz: f64::from(target_z - camera_z) / dist_px,
+        };
+        (ray, (dist_px - 1.0) as usize)
+    }
+
+    /// Whether the surface at `target` (height `target_z`) can be seen from the camera at
+    /// `camera` (height `camera_z`): no terrain between them rises above the sight line.
+    pub(super) fn line_of_sight(
+        &self,
+        camera: [f64; 2],
+        camera_z: f32,
+        target: [f64; 2],
+        target_z: f32,
+    ) -> bool {
+        let (ray, steps) = Self::sight_ray(camera, camera_z, target, target_z);
+        !self.ray_hits(&ray, steps)
+    }
+}
+
+/// Bilinear sample of a row-major grid at pixel-centre coordinates `(c, r)`, clamped.
+#[inline]
+pub(super) fn bilinear(data: &[f32], w: usize, h: usize, c: f64, r: f64) -> f32 {
+    let c = c.clamp(0.0, (w - 1) as f64);
+    let r = r.clamp(0.0, (h - 1) as f64);
+    let (c0, r0) = (c as usize, r as usize);
+    let (c1, r1) = ((c0 + 1).min(w - 1), (r0 + 1).min(h - 1));
+    let (tx, ty) = ((c - c0 as f64) as f32, (r - r0 as f64) as f32);
+    let top = data[r0 * w + c0] + tx * (data[r0 * w + c1] - data[r0 * w + c0]);
+    let bottom = data[r1 * w + c0] + tx * (data[r1 * w + c1] - data[r1 * w + c0]);
+    top + ty * (bottom - top)
+}
+
+/// The sun as a unit vector and as a per-pixel march step.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Sun {
+    /// Unit vector towards the sun: x east, y north, z up.
+    pub(super) dir: [f64; 3],
+    /// Column change per march step (one pixel horizontally towards the sun).
+    step_col: f64,
+    /// Row change per march step (rows grow south).
+    step_row: f64,
+    /// Rise of the sun ray per march step, metres.
+    rise_per_step_m: f64,
+}
+
+impl Sun {
+    /// The sun at `azimuth_deg` (direction the light comes from, clockwise from north) and
+    /// `elevation_deg` above the horizon, over a grid of `resolution_m` pixels.
+    pub(super) fn new(azimuth_deg: f64, elevation_deg: f64, resolution_m: f64) -> Self {
+        let (az, el) = (azimuth_deg.to_radians(), elevation_deg.to_radians());
+        Self {
+            dir: [az.sin() * el.cos(), az.cos() * el.cos(), el.sin()],
+            step_col: az.sin(),
+            step_row: -az.cos(),
+            rise_per_step_m: el.tan() * resolution_m,
+        }
+    }
+}
+
+/// Reflected light of a Lambertian surface: `albedo × (ambient + (1 − ambient) × cos⁺ × lit)`.
+#[inline]
+pub(super) fn radiance(albedo: f32, cos_incidence: f64, lit: bool, ambient: f64) -> f64 {
+    let direct = if lit { cos_incidence.max(0.0) } else { 0.0 };
+    f64::from(albedo) * (ambient + (1.0 - ambient) * direct)
+}
+
+/// Separable Gaussian blur of a `w × h` image with standard deviation `sigma_px`, edges
+/// clamped; the kernel reaches 3σ. `sigma_px <= 0` returns the image unchanged.
+pub(super) fn gaussian_blur(img: &[f32], w: usize, h: usize, sigma_px: f64) -> Vec<f32> {
+    if sigma_px <= 0.0 || w == 0 || h == 0 {
+        return img.to_vec();
+    }
+    let radius = (3.0 * sigma_px).ceil() as usize;
+    let mut kernel: Vec<f32> = (0..=2 * radius)
+        .map(|i| {
+            let d = i as f64 - radius as f64;
+            (-0.5 * d * d / (sigma_px * sigma_px)).exp() as f32
+        })
+        .collect();
+    let total: f32 = kernel.iter().sum();
+    kernel.iter_mut().for_each(|k| *k /= total);
+    let clamp = |i: usize, n: usize| (i.saturating_sub(radius)).min(n - 1);
+    let mut tmp = vec![0.0f32; w * h];
+    tmp.par_chunks_mut(w)
+        .enumerate()
+        .for_each(|(row, out_row)| {
+            let src = &img[row * w..(row + 1) * w];
+            for (col, out) in out_row.iter_mut().enumerate() {
+                *out = kernel
+                    .iter()
+                    .enumerate()
+                    .map(|(k, wk)| wk * src[clamp(col + k, w)])
+                    .sum();
+            }
+        });
+    let mut out = vec![0.0f32; w * h];
+    out.par_chunks_mut(w)
+        .enumerate()
+        .for_each(|(row, out_row)| {
+            for (col, out) in out_row.iter_mut().enumerate() {
+                *out = kernel
+                    .iter()
+                    .enumerate()
+                    .map(|(k, wk)| wk * tmp[clamp(row + k, h) * w + col])
+                    .sum();
+            }
+        });
+    out
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+    use maps::GeoTransform;
+
+    fn flat_with_wall() -> Raster<f32> {
+        let mut r = Raster::filled(40, 40, GeoTransform::new(0.0, 10.0, 0.25), 0.0f32);
+        for row in 0..40 {
+            r.set(20, row, 3.0); // a 3 m wall along column 20
+        }
+        r
+    }
+
+    #[test]
+    fn wall_casts_a_shadow_on_its_lee_side_only() {
+        let ras = flat_with_wall();
+        let hf = HeightField::new(&ras);
+        // Sun from the east (azimuth 90°), 45° up: the shadow falls west of the wall.
+        let sun = Sun::new(90.0, 45.0, 0.25);
+        assert!(!hf.sunlit(15, 20, &sun));
+        assert!(hf.sunlit(25, 20, &sun));
+        // 3 m at 45° reaches 12 pixels west of the wall.
+        assert!(hf.sunlit(5, 20, &sun));
+    }
+
+    #[test]
+    fn wall_blocks_the_line_of_sight() {
+        let ras = flat_with_wall();
+        let hf = HeightField::new(&ras);
+        assert!(!hf.line_of_sight([10.0, 20.0], 2.0, [30.0, 20.0], 0.0));
+        assert!(hf.line_of_sight([10.0, 20.0], 2.0, [18.0, 20.0], 0.0));
+        assert!(hf.line_of_sight([10.0, 20.0], 2.0, [10.0, 39.0], 0.0));
+    }
+
+    #[test]
+    fn tile_skipping_march_equals_the_reference() {
+        use crate::synthetic::noise::{ValueFbm, gaussian};
+        let (w, h) = (150, 120);
+        let f = ValueFbm::new(3, 6.0, 4);
+        let mut ras = Raster::filled(w, h, GeoTransform::new(0.0, 30.0, 0.25), 0.0f32);
+        for row in 0..h {
+            for col in 0..w {
+                let bump = if gaussian(9, col as i64, row as i64) > 2.5 {
+                    0.6
+                } else {
+                    0.0
+                };
+                let v = 1.5 * f.at(col as f64 * 0.25, row as f64 * 0.25) + bump;
+                ras.set(col, row, v as f32);
+            }
+        }
+        let hf = HeightField::new(&ras);
+        let (mut hits, mut total) = (0, 0);
+        for el in [5.0, 15.0, 35.0, 70.0] {
+            for az in [0.0, 45.0, 90.0, 133.0, 250.0, 301.0] {
+                let sun = Sun::new(az, el, 0.25);
+                for row in (0..h).step_by(7) {
+                    for col in (0..w).step_by(5) {
+                        let ray = hf.sun_ray(col, row, &sun);
+                        let fast = hf.ray_hits(&ray, usize::MAX);
+                        assert_eq!(fast, hf.ray_hits_reference(&ray, usize::MAX));
+                        hits += usize::from(fast);
+                        total += 1;
+                    }
+                }
+            }
+        }
+        let camera = [75.3, 60.1];
+        let cz = hf.bilinear(camera[0], camera[1]) + 2.0;
+        for row in 0..h {
+            for col in (row % 3..w).step_by(3) {
+                let t = [col as f64 + 0.3, row as f64 - 0.2];
+                let tz = hf.bilinear(t[0], t[1]);
+                let (ray, steps) = HeightField::sight_ray(camera, cz, t, tz);
+                let fast = hf.ray_hits(&ray, steps);
+                assert_eq!(fast, hf.ray_hits_reference(&ray, steps), "{t:?}");
+                hits += usize::from(fast);
+                total += 1;
+            }
+        }
+        // Both outcomes occur often enough for the comparison to mean something.
+        assert!(
+            hits > total / 20 && hits < total * 19 / 20,
+            "{hits}/{total}"
+        );
+    }
+
+    #[test]
+    fn flat_ground_faces_the_sun_by_its_elevation() {
+        let ras = Raster::filled(4, 4, GeoTransform::new(0.0, 1.0, 0.25), 1.0f32);
+        let sun = Sun::new(250.0, 30.0, 0.25);
+        let cos = HeightField::new(&ras).cos_incidence(1, 1, sun.dir);
+        assert!((cos - 0.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn blur_preserves_a_constant_and_the_mean() {
+        let img = vec![7.0f32; 30];
+        assert!(
+            gaussian_blur(&img, 6, 5, 0.7)
+                .iter()
+                .all(|v| (v - 7.0).abs() < 1e-5)
+        );
+        let mut spike = vec![0.0f32; 121];
+        spike[60] = 1.0;
+        let b = gaussian_blur(&spike, 11, 11, 0.7);
+        assert!((b.iter().sum::<f32>() - 1.0).abs() < 1e-5);
+        assert!(b[60] < 0.5 && b[61] > 0.0);
+    }
+}
