@@ -3,7 +3,8 @@
 # (only ratios taken side by side are meaningful on these noisy machines; PERFORMANCE.md §5).
 #
 # Usage: peers/run_peer_benchmarks.sh [SECTION...]     (default: all sections)
-# Sections: grid (B3 keep-out growth, B4 A*), campaign (the whole rapid-traverse compare).
+# Sections: grid (B3 keep-out growth, B4 A*), campaign (the whole rapid-traverse compare),
+#           census (B1 exact census scores, B2 full localization).
 #
 # The Rust benches build with -C target-cpu=native into their own target dir
 # (target/bench-native), so the shared target/ is not rebuilt with other flags.
@@ -42,8 +43,21 @@ section_campaign() {
     fi
 }
 
+# --- census: B1 exact masked census scores (brute force, FFT) and B2 full localization --------
+section_census() {
+    local dump="$BENCH_TARGET/bench-census"
+    echo "== census: cargo bench --bench localize (dumps the B1 instance to $dump) =="
+    SOLSIM_CENSUS_DUMP="$dump" RUSTFLAGS="-C target-cpu=native" CARGO_TARGET_DIR="$BENCH_TARGET" \
+        cargo bench --bench localize
+    echo "== census: Python peers on the same instance (scipy.fft f64, 24 x cv2 TM_CCORR f32) =="
+    python3 peers/bench_census.py peers --dump "$dump" --out "$dump/peers.json"
+    echo "== census: ratios (ours / peer, < 1 = faster) =="
+    python3 peers/bench_census.py report --peers "$dump/peers.json" \
+        --criterion "$BENCH_TARGET/criterion"
+}
+
 sections=("$@")
-[ ${#sections[@]} -eq 0 ] && sections=(grid campaign)
+[ ${#sections[@]} -eq 0 ] && sections=(grid campaign census)
 for s in "${sections[@]}"; do
     "section_$s"
 done

@@ -9,6 +9,7 @@
 //! - [`error`]: [`error::ScenarioError`], one line naming file, field and what was expected.
 #![warn(missing_docs)]
 
+pub mod cmd_localize;
 pub mod cmd_map;
 pub mod cmd_zones;
 pub mod error;

@@ -13,7 +13,7 @@ use clap::{Args, Parser, Subcommand};
 use sim::{CampaignOutcome, Strategy, campaign};
 use solsim::report;
 use solsim::scenario::Scenario;
-use solsim::{cmd_map, cmd_zones, regress};
+use solsim::{cmd_localize, cmd_map, cmd_zones, regress};
 
 /// Simulate multi-sol Mars rover drives: position uncertainty, grown keep-out zones, AutoNav
 /// NO_PATH faults, and how operations strategies (ground-in-the-loop, onboard global
@@ -55,6 +55,10 @@ enum Command {
     /// Map tools.
     #[command(subcommand)]
     Map(MapCommand),
+    /// Onboard global localization accuracy on the synthetic benchmark set (264 post-drive
+    /// panoramas over rocky, plain and dune terrain): mean, median, p99, max, counts over 1 m and
+    /// 2 m, for census, NCC and mutual information.
+    LocalizeBench(cmd_localize::LocalizeBenchArgs),
 }
 
 #[derive(Subcommand)]
@@ -244,6 +248,10 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
         }
         Command::Zones(ZonesCommand::Check(a)) => {
             cmd_zones::run(&a, stdout)?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::LocalizeBench(a) => {
+            cmd_localize::run(&a, stdout)?;
             Ok(ExitCode::SUCCESS)
         }
         Command::Map(MapCommand::Generate(a)) => {

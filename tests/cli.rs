@@ -385,3 +385,35 @@ fn outputs_are_not_half_written_when_the_directory_is_unwritable() {
     assert_eq!(leftovers.len(), 1, "{leftovers:?}");
     assert!(Path::new(&blocker).is_file());
 }
+
+#[test]
+fn localize_bench_prints_the_accuracy_table() {
+    let o = solsim()
+        .args(["localize-bench", "--cases", "3", "--methods", "census"])
+        .output()
+        .expect("runs");
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = String::from_utf8_lossy(&o.stdout);
+    for s in [
+        "method: census",
+        "mean_m",
+        "median_m",
+        "p99_m",
+        ">1_m",
+        ">2_m",
+        "rocky",
+        "plain",
+        "dunes",
+    ] {
+        assert!(text.contains(s), "lacks {s}:\n{text}");
+    }
+}
+
+#[test]
+fn localize_bench_rejects_an_unknown_method() {
+    let o = solsim()
+        .args(["localize-bench", "--cases", "3", "--methods", "sift"])
+        .output()
+        .expect("runs");
+    assert_bad_input(&o, &["--methods", "sift"]);
+}

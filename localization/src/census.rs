@@ -47,11 +47,13 @@
 //! - W. Muła, N. Kurz and D. Lemire, "Faster population counts using AVX2 instructions",
 //!   Comput. J. 2018 (byte-packed popcount kernels).
 
+mod fft;
 mod kernel;
 mod score;
 mod subpixel;
 mod transform;
 
+pub use fft::hamming_scores_fft;
 pub use score::{ScoreMap, hamming_scores, hamming_scores_naive};
 pub use subpixel::{Curvature, subpixel_peak};
 pub use transform::{

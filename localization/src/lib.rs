@@ -7,6 +7,8 @@
 //!   injected radiation upsets that must be caught and never applied.
 #![warn(missing_docs)]
 
+pub mod baselines;
+pub mod benchmark_set;
 pub mod census;
 pub mod hbs;
 pub mod matcher;

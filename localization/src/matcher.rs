@@ -4,15 +4,22 @@
 //! 1. The rover orthomosaic is resampled in easting by the map's scale factor (the orbital map is
 //!    equirectangular with true scale at one latitude, Jezero's 18.4663°; at another latitude a
 //!    map metre east is not a ground metre). See [`easting_scale`].
-//! 2. The orbital appearance is cropped to the search window (prior ± search radius) and both are
-//!    census-transformed; [`hamming_scores`] scores every 25 cm offset exactly.
+//! 2. The orbital appearance is cropped to the search window (prior ± search radius) and the
+//!    appearance score of every 25 cm offset is computed by the [`Method`] of [`MatchParams`]:
+//!    by default both are census-transformed and
+//!    [`hamming_scores`](crate::census::hamming_scores) scores every offset exactly;
+//!    the baselines of paper 000 §4 are masked NCC ([`ncc_scores`], `1 − ncc`) and mutual
+//!    information ([`mi_scores`], scored `1 − MI / H(T)`, see [`Method::MutualInformation`]).
 //! 3. With DEMs, the mean-removed sum of squared height differences per valid cell is computed at
 //!    every 1 m offset, mapped to `[0, 1)` as `msd / (msd + dem_scale²)` and interpolated onto the
 //!    appearance offsets; the two are summed with appearance weighted more.
 //! 4. The best offset is refined to sub-pixel by the quadratic fit of [`subpixel_peak`].
-//! 5. Confidence: σ from the fitted curvature and the binomial noise of the best score, the ratio of
-//!    the best score outside the peak's neighbourhood to the best, and the fraction of valid
-//!    pixels; validity checks turn any of them out of bounds into a rejection with a reason.
+//! 5. Confidence: σ from the fitted curvature and the noise of the best score (census: binomial
+//!    noise of the fraction of disagreeing bits; NCC and MI: the residual of the quadratic fit,
+//!    see [`Method`]), the ratio of the best score outside the peak's neighbourhood to the best,
+//!    and the fraction of valid pixels; validity checks turn any of them out of bounds into a
+//!    rejection with a reason. The DEM term, sub-pixel fit, σ propagation and checks are shared
+//!    by all methods.
 //!
 //! ## References
 //! Paper 000 §4 (accuracy, search radius), §5 (census matching, DEM SSD, sub-pixel fit, easting
@@ -20,7 +27,8 @@
 
 use maps::{GeoTransform, Raster};
 
-use crate::census::{MatchError, census_transform_raster, hamming_scores, subpixel_peak};
+use crate::baselines::{mi_scores, ncc_scores, template_entropy};
+use crate::census::{MatchError, ScoreMap, census_transform_raster, subpixel_peak};
 
 /// Latitude of true scale of the Jezero orbital maps, degrees (paper 000 §5).
 pub const JEZERO_TRUE_SCALE_LATITUDE_DEG: f64 = 18.4663;
@@ -30,6 +38,65 @@ pub const JEZERO_TRUE_SCALE_LATITUDE_DEG: f64 = 18.4663;
 #[must_use]
 pub fn easting_scale(latitude_deg: f64, true_scale_latitude_deg: f64) -> f64 {
     true_scale_latitude_deg.to_radians().cos() / latitude_deg.to_radians().cos()
+}
+
+/// Appearance score used by [`localize`] (paper 000 §4: census, and the two baselines it is
+/// compared against). All are "lower is better".
+///
+/// Serialized (and named by [`Method::name`] / [`Method::from_name`]) as `"census"`, `"ncc"`,
+/// `"mi"`.
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize,
+)]
+pub enum Method {
+    /// Modified census transform + masked Hamming distance (the flight method): the fraction of
+    /// disagreeing valid census bits, in `[0, 1]`. σ uses the binomial noise of that fraction.
+    #[default]
+    #[serde(rename = "census")]
+    Census,
+    /// Masked zero-mean normalized cross-correlation, scored `1 − ncc` in `[0, 2]`
+    /// ([`ncc_scores`]). The binomial model does not apply: the score noise for σ is estimated
+    /// from the residual of the 3×3 quadratic fit (residual sum of squares ÷ 3 degrees of
+    /// freedom), floored like census at `1/√12` px.
+    #[serde(rename = "ncc")]
+    Ncc,
+    /// Mutual information of rank-quantized intensities ([`mi_scores`]), scored
+    /// `1 − MI / H(T)` in `[0, 1]` — the fraction of the template's (constant) entropy the map
+    /// does not explain; the same minimum as `−MI`, but positive so the peak ratio keeps its
+    /// meaning. σ as for [`Method::Ncc`]. MI is evaluated exactly on a 2× subsampled offset grid
+    /// and refined at full resolution around its best local minima; other offsets are
+    /// interpolated (see [`crate::baselines`]).
+    #[serde(rename = "mi")]
+    MutualInformation,
+}
+
+impl Method {
+    /// All methods, census first.
+    pub const ALL: [Method; 3] = [Method::Census, Method::Ncc, Method::MutualInformation];
+
+    /// Short lowercase name: `"census"`, `"ncc"` or `"mi"`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Census => "census",
+            Method::Ncc => "ncc",
+            Method::MutualInformation => "mi",
+        }
+    }
+
+    /// The method called `name` (as [`Method::name`], case-insensitive), if any.
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Method> {
+        Method::ALL
+            .into_iter()
+            .find(|m| m.name().eq_ignore_ascii_case(name.trim()))
+    }
+}
+
+impl std::fmt::Display for Method {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
 }
 
 /// Matcher settings (plain struct; units and defaults on each field).
@@ -55,6 +122,8 @@ pub struct MatchParams {
     pub max_sigma_m: f64,
     /// Reject when fewer than this fraction of the orthomosaic pixels are valid (default: 0.1).
     pub min_valid_fraction: f64,
+    /// Appearance score (default: [`Method::Census`]).
+    pub method: Method,
 }
 
 impl Default for MatchParams {
@@ -70,6 +139,7 @@ impl Default for MatchParams {
             min_peak_ratio: 1.15,
             max_sigma_m: 1.5,
             min_valid_fraction: 0.1,
+            method: Method::Census,
         }
     }
 }
@@ -227,32 +297,90 @@ fn dem_scores(
     map: &Raster<f32>,
     dem_scale_m: f64,
 ) -> (usize, usize, Vec<f64>) {
+    use rayon::prelude::*;
     let (ow, oh) = (map.width + 1 - rover.width, map.height + 1 - rover.height);
-    let n_valid = rover_valid.iter().filter(|&&v| v).count();
-    let mut out = vec![f64::INFINITY; ow * oh];
-    for dy in 0..oh {
-        for dx in 0..ow {
-            let (mut n, mut sd, mut sdd) = (0usize, 0.0f64, 0.0f64);
-            for y in 0..rover.height {
-                for x in 0..rover.width {
-                    let i = y * rover.width + x;
-                    let m = map.data[(y + dy) * map.width + x + dx];
-                    if rover_valid[i] && m.is_finite() {
-                        let d = f64::from(rover.data[i]) - f64::from(m);
+    // Only valid rover cells take part: (offset of the cell in the map window, height).
+    let cells: Vec<(usize, f64)> = (0..rover.width * rover.height)
+        .filter(|&i| rover_valid[i] && rover.data[i].is_finite())
+        .map(|i| {
+            (
+                (i / rover.width) * map.width + i % rover.width,
+                f64::from(rover.data[i]),
+            )
+        })
+        .collect();
+    let n_valid = cells.len();
+    let scale2 = dem_scale_m * dem_scale_m;
+    // Rows of offsets in parallel; each score is a sequential sum, so the result does not
+    // depend on the thread count.
+    let out: Vec<f64> = (0..oh)
+        .into_par_iter()
+        .flat_map_iter(|dy| {
+            let cells = &cells;
+            (0..ow).map(move |dx| {
+                let base = dy * map.width + dx;
+                let (mut n, mut sd, mut sdd) = (0usize, 0.0f64, 0.0f64);
+                for &(k, r) in cells {
+                    let m = map.data[base + k];
+                    if m.is_finite() {
+                        let d = r - f64::from(m);
                         n += 1;
                         sd += d;
                         sdd += d * d;
                     }
                 }
-            }
-            if n * 4 >= n_valid.max(1) {
-                let mean = sd / n as f64;
-                let msd = (sdd / n as f64 - mean * mean).max(0.0);
-                out[dy * ow + dx] = msd / (msd + dem_scale_m * dem_scale_m);
-            }
-        }
-    }
+                if n > 0 && n * 4 >= n_valid {
+                    let mean = sd / n as f64;
+                    let msd = (sdd / n as f64 - mean * mean).max(0.0);
+                    msd / (msd + scale2)
+                } else {
+                    f64::INFINITY
+                }
+            })
+        })
+        .collect();
     (ow, oh, out)
+}
+
+/// Census appearance scores of the (rescaled) orthomosaic at every offset inside `window`.
+fn census_scores(
+    window: &Raster<u8>,
+    ortho: &Raster<u8>,
+    ortho_valid: &[bool],
+) -> Result<ScoreMap, LocalizeError> {
+    let map_census = census_transform_raster(window, &vec![true; window.width * window.height])?;
+    let template = census_transform_raster(ortho, ortho_valid)?;
+    let scores = crate::census::hamming_scores_fft(&template, &map_census)?;
+    Ok(scores)
+}
+
+/// Score noise (variance) from the residual of the least-squares quadratic over the 3×3
+/// neighbourhood of `(bx, by)` (6 parameters, 9 points: residual sum of squares ÷ 3). The basis
+/// `1, x, y, x² − ⅔, xy, y² − ⅔` is orthogonal on that grid, so each coefficient is a projection.
+fn quadratic_residual_variance(g: &[f64], w: usize, (bx, by): (usize, usize)) -> f64 {
+    let z = |x: isize, y: isize| g[(by as isize + y) as usize * w + (bx as isize + x) as usize];
+    let pts = || (-1isize..=1).flat_map(|y| (-1isize..=1).map(move |x| (x, y)));
+    let proj = |f: &dyn Fn(isize, isize) -> f64| {
+        let num: f64 = pts().map(|(x, y)| f(x, y) * z(x, y)).sum();
+        let den: f64 = pts().map(|(x, y)| f(x, y) * f(x, y)).sum();
+        num / den
+    };
+    let basis: [&dyn Fn(isize, isize) -> f64; 6] = [
+        &|_, _| 1.0,
+        &|x, _| x as f64,
+        &|_, y| y as f64,
+        &|x, _| (x * x) as f64 - 2.0 / 3.0,
+        &|x, y| (x * y) as f64,
+        &|_, y| (y * y) as f64 - 2.0 / 3.0,
+    ];
+    let coef: Vec<f64> = basis.iter().map(|f| proj(*f)).collect();
+    let rss: f64 = pts()
+        .map(|(x, y)| {
+            let fit: f64 = basis.iter().zip(&coef).map(|(f, c)| c * f(x, y)).sum();
+            (z(x, y) - fit).powi(2)
+        })
+        .sum();
+    rss / 3.0
 }
 
 /// Localize: match the rover's images against the orbital map around `prior_m`.
@@ -299,15 +427,29 @@ pub fn localize(
     }
     let (c0, r0) = (c0.round() as usize, r0.round() as usize);
     let window = crop(map, c0, r0, cols, rows);
-    let map_census = census_transform_raster(&window, &vec![true; cols * rows])?;
-    let template = census_transform_raster(&ortho, &ortho_valid)?;
-    let scores = hamming_scores(&template, &map_census)?;
-    let (sw, sh) = (scores.width, scores.height);
-    let mut combined: Vec<f64> = scores
-        .normalized_scores()
-        .iter()
-        .map(|s| p.appearance_weight * s)
-        .collect();
+    // Appearance score per offset (lower is better) and, for census, the valid bits per offset.
+    let (sw, sh, appearance, census_bits) = match p.method {
+        Method::Census => {
+            let scores = census_scores(&window, &ortho, &ortho_valid)?;
+            let normalized = scores.normalized_scores();
+            (scores.width, scores.height, normalized, Some(scores.valid))
+        }
+        Method::Ncc => {
+            let s = ncc_scores(&ortho.data, &ortho_valid, tw, th, &window.data, cols, rows)?;
+            (s.width, s.height, s.scores, None)
+        }
+        Method::MutualInformation => {
+            let s = mi_scores(&ortho.data, &ortho_valid, tw, th, &window.data, cols, rows)?;
+            let h = template_entropy(&ortho.data, &ortho_valid);
+            let scores = s
+                .scores
+                .iter()
+                .map(|&neg_mi| if h > 0.0 { 1.0 + neg_mi / h } else { 1.0 })
+                .collect();
+            (s.width, s.height, scores, None)
+        }
+    };
+    let mut combined: Vec<f64> = appearance.iter().map(|s| p.appearance_weight * s).collect();
 
     if let (Some((rdem, rvalid)), Some(mdem)) = (rover.dem, orbital.dem) {
         let dres = mdem.geo.resolution_m_per_px;
@@ -352,11 +494,17 @@ pub fn localize(
     let best_score = combined[best];
     let (fx, fy, sigma_px) = match subpixel_peak(&combined, sw, sh, (bx, by)) {
         Some((dx, dy, curv)) => {
-            // Binomial noise of a fraction of disagreeing bits, propagated through the fitted
-            // bowl: var(position) ≈ var(score) / smallest curvature (per px²).
-            let bits = f64::from(scores.valid[best].max(1));
-            let s = best_score.clamp(1e-6, 1.0 - 1e-6);
-            let var_score = s * (1.0 - s) / bits;
+            // Census: binomial noise of a fraction of disagreeing bits; NCC / MI: the residual
+            // of the quadratic fit. Propagated through the fitted bowl:
+            // var(position) ≈ var(score) / smallest curvature (per px²).
+            let var_score = match &census_bits {
+                Some(valid_bits) => {
+                    let bits = f64::from(valid_bits[best].max(1));
+                    let s = best_score.clamp(1e-6, 1.0 - 1e-6);
+                    s * (1.0 - s) / bits
+                }
+                None => quadratic_residual_variance(&combined, sw, (bx, by)),
+            };
             let tr = curv.f_xx + curv.f_yy;
             let det = curv.determinant();
             let lambda_min = 0.5 * (tr - (tr * tr - 4.0 * det).max(0.0).sqrt());
@@ -507,6 +655,62 @@ mod tests {
         };
         let m = localize(&orbital, &rover, prior, &MatchParams::default()).unwrap();
         assert!(m.rejection.is_some(), "{m:?}");
+    }
+
+    #[test]
+    fn method_names_round_trip() {
+        for m in Method::ALL {
+            assert_eq!(Method::from_name(m.name()), Some(m));
+            assert_eq!(m.to_string(), m.name());
+        }
+        assert_eq!(Method::from_name("MI"), Some(Method::MutualInformation));
+        assert_eq!(Method::from_name("sad"), None);
+        assert_eq!(MatchParams::default().method, Method::Census);
+    }
+
+    #[test]
+    fn ncc_and_mi_recover_a_planted_offset() {
+        let geo = GeoTransform::new(0.0, 200.0, 0.25);
+        let map = texture(800, 800, geo, 7);
+        let truth = [100.0, 90.0];
+        let (tc, tr) = map.geo.pixel_of(truth[0], truth[1]);
+        let mut ortho = crop(&map, tc as usize - 120, tr as usize - 120, 240, 240);
+        // A linear camera response change (gain and offset).
+        for v in &mut ortho.data {
+            *v = (0.7 * f64::from(*v) + 40.0) as u8;
+        }
+        let valid: Vec<bool> = (0..240 * 240).map(|i| i % 240 >= 60).collect();
+        let orbital = OrbitalMap {
+            appearance: &map,
+            dem: None,
+        };
+        let prior = [truth[0] + 11.5, truth[1] - 7.25];
+        let flat = Raster::filled(240, 240, geo, 128u8);
+        for method in [Method::Ncc, Method::MutualInformation] {
+            let p = MatchParams {
+                method,
+                ..MatchParams::default()
+            };
+            let rover = RoverImages {
+                ortho: &ortho,
+                ortho_valid: &valid,
+                dem: None,
+            };
+            let m = localize(&orbital, &rover, prior, &p).unwrap();
+            let err = (m.position_m[0] - truth[0]).hypot(m.position_m[1] - truth[1]);
+            assert!(err < 0.1, "{method}: {m:?}");
+            assert_eq!(m.rejection, None, "{method}: {m:?}");
+            assert!(m.sigma_m < 0.5, "{method}: {m:?}");
+
+            // Featureless terrain is rejected, not applied.
+            let rover = RoverImages {
+                ortho: &flat,
+                ortho_valid: &valid,
+                dem: None,
+            };
+            let m = localize(&orbital, &rover, prior, &p).unwrap();
+            assert!(m.rejection.is_some(), "{method}: {m:?}");
+        }
     }
 
     #[test]

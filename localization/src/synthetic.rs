@@ -16,6 +16,27 @@
 //!    (late-afternoon) sun than orbit, a different monotonic response per wedge, sensor noise;
 //!    and a 1 m rover DEM where enough samples were seen.
 //!
+//! ## Error sources (why census does not localize these scenes to millimetres)
+//!
+//! Rendering the map and the mosaic from one truth with perfect geometry localizes to ~5 mm;
+//! real data gives 0.36 m mean (paper 000 §4). Each real error source is a field of the
+//! params structs, with unit, default and source (or "judgement") in its documentation:
+//!
+//! - orbital effective resolution: [`OrbitalParams::blur_sigma_px`] (σ 1 px, HiRISE MTF);
+//! - a different orbital epoch: smooth albedo change ([`OrbitalParams::albedo_change_sigma`]),
+//!   dust devil tracks in the orbital image only (`dust_devil_tracks_*`), and sand ripples
+//!   (part of the truth on sand) migrated between epochs
+//!   ([`OrbitalParams::ripple_migration_m`]);
+//! - orthorectification / co-registration error: a smooth displacement field of the orbital
+//!   image ([`OrbitalParams::ortho_displacement_sigma_m`], `_wavelength_m`);
+//! - rover side: heading error ([`RoverImagingParams::heading_sigma_deg`]), scale error
+//!   ([`RoverImagingParams::scale_sigma`]), the mosaic centre off the rover's true position
+//!   ([`RoverImagingParams::mosaic_offset_sigma_m`]), recorded in
+//!   [`RoverObservation::geometry_errors`]; stereo range and height noise, dropouts and
+//!   per-wedge responses as before.
+//!
+//! Each can be switched off (set to 0) for ablations; see [`crate::benchmark_set`].
+//!
 //! Settings are plain structs ([`OrbitalParams`], [`RoverImagingParams`]); bad input is a
 //! [`SyntheticError`]. Every pixel is a pure function of (seed, position) through hash-based
 //! noise, and the few per-observation draws (sun, wedge responses) come from one
@@ -60,7 +81,9 @@ mod shading;
 mod truth;
 
 pub use orbital::{OrbitalParams, OrbitalProducts, render_orbital};
-pub use rover::{RoverLighting, RoverObservation, WedgeResponse, render_rover};
+pub use rover::{
+    RoverGeometryErrors, RoverLighting, RoverObservation, WedgeResponse, render_rover,
+};
 pub use rover_params::RoverImagingParams;
 pub use truth::{TruthPatch, truth_patch};
 

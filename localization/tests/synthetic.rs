@@ -189,7 +189,7 @@ fn golden_digest_of_a_hand_made_scene() {
 }
 
 /// MD5 of the truth patch, orbital products and rover observation of the golden scene.
-const GOLDEN_DIGEST: &str = "0e89d9265de2c19f486f07e4d0706846";
+const GOLDEN_DIGEST: &str = "8afcc2e5ccead71cbf8634ebfbed2ed6";
 
 #[test]
 fn valid_fraction_is_plausible_and_grows_with_the_wedge_count() {
@@ -213,7 +213,8 @@ fn valid_fraction_is_plausible_and_grows_with_the_wedge_count() {
     eprintln!("valid fraction with 3, 4, 5 wedges: {fractions:?}");
     assert!((0.25..0.75).contains(&fractions[1]), "{fractions:?}");
     assert!(fractions[0] < fractions[1] - 0.05, "{fractions:?}");
-    assert!(fractions[2] >= fractions[1], "{fractions:?}");
+    // Four 96° wedges already cover every azimuth: five add overlap, not coverage.
+    assert!(fractions[2] >= fractions[1] - 0.01, "{fractions:?}");
 }
 
 #[test]
@@ -224,7 +225,9 @@ fn rover_body_and_far_pixels_are_invalid_near_pixels_mostly_valid() {
     assert_eq!(obs.valid.len(), ORTHO_SIZE_PX * ORTHO_SIZE_PX);
     let (mut near, mut near_valid) = (0, 0);
     for (i, range_m) in ortho_ranges(obs) {
-        if !(1.5..=30.0).contains(&range_m) {
+        // The range limits apply to the ground a pixel shows; with the mosaic's scale, heading
+        // and centre errors that is a few cm from the pixel's own position.
+        if !(1.3..=30.3).contains(&range_m) {
             assert!(!obs.valid[i], "pixel {i} at {range_m} m is valid");
             assert_eq!(obs.ortho.data[i], 0);
         } else if range_m < 6.0 {
@@ -257,12 +260,12 @@ fn pixels_behind_a_wall_are_occluded() {
             }
         }
     }
-    let patch = TruthPatch {
-        height_m: height,
-        albedo: Raster::filled(n, n, geo, 0.2f32),
-    };
+    let patch = TruthPatch::from_rasters(height, Raster::filled(n, n, geo, 0.2f32));
     let p = RoverImagingParams {
         stereo_dropout_at_max_range: 0.0,
+        heading_sigma_deg: 0.0,
+        scale_sigma: 0.0,
+        mosaic_offset_sigma_m: 0.0,
         ..RoverImagingParams::default()
     };
     let obs = render_rover(&patch, rover_m, &p, 1).unwrap();
@@ -311,8 +314,11 @@ fn orbital_dem_is_the_block_mean_of_the_truth() {
     };
     let bias = check(&OrbitalParams::default(), 5.0 * sigma);
     assert!(bias.abs() < 4.0 * sigma / 60.0, "{bias}");
+    // Without DEM noise and without the ripples moving between epochs (the DTM is of the
+    // orbital epoch), the DEM is exactly the block mean of the truth.
     let exact = OrbitalParams {
         dem_noise_sigma_m: 0.0,
+        ripple_migration_m: 0.0,
         ..OrbitalParams::default()
     };
     check(&exact, 1e-4);
@@ -437,7 +443,24 @@ fn documented_defaults() {
             o.gamma,
             o.dem_noise_sigma_m
         ),
-        (0.7, 2.0, 0.8, 0.05)
+        (1.0, 2.0, 0.8, 0.05)
+    );
+    assert_eq!(
+        (
+            o.albedo_change_sigma,
+            o.dust_devil_tracks_per_ha,
+            o.dust_devil_track_width_m,
+            o.dust_devil_track_darkening
+        ),
+        (0.05, 0.5, [1.0, 6.0], [0.05, 0.15])
+    );
+    assert_eq!(
+        (
+            o.ripple_migration_m,
+            o.ortho_displacement_sigma_m,
+            o.ortho_displacement_wavelength_m
+        ),
+        (0.75, 0.2, 40.0)
     );
     let r = RoverImagingParams::default();
     assert_eq!(
@@ -457,4 +480,89 @@ fn documented_defaults() {
         (0.05, 0.02)
     );
     assert_eq!((r.stereo_dropout_at_max_range, r.dem_min_samples), (0.3, 4));
+    assert_eq!(
+        (r.heading_sigma_deg, r.scale_sigma, r.mosaic_offset_sigma_m),
+        (0.5, 0.003, 0.03)
+    );
+}
+
+/// The rover's geometric errors are drawn from the seed at the documented scale, recorded, and
+/// all exactly zero when their sigmas are.
+#[test]
+fn rover_geometry_errors_are_seeded_recorded_and_switchable() {
+    let layers = procedural_map(12);
+    let patch = truth_patch(&layers, [150.0, 150.0], 40.0, 1).unwrap();
+    let p = RoverImagingParams::default();
+    let (mut heading, mut scale, mut offset) = (0.0f64, 0.0f64, 0.0f64);
+    for seed in 0..16 {
+        let e = render_rover(&patch, [150.0, 150.0], &p, seed)
+            .unwrap()
+            .geometry_errors;
+        heading = heading.max(e.heading_error_deg.abs());
+        scale = scale.max((e.scale - 1.0).abs());
+        offset = offset.max(e.mosaic_offset_m[0].hypot(e.mosaic_offset_m[1]));
+    }
+    assert!((0.3..2.5).contains(&heading), "{heading}");
+    assert!((0.001..0.015).contains(&scale), "{scale}");
+    assert!((0.02..0.15).contains(&offset), "{offset}");
+    let exact = RoverImagingParams {
+        heading_sigma_deg: 0.0,
+        scale_sigma: 0.0,
+        mosaic_offset_sigma_m: 0.0,
+        ..p
+    };
+    let e = render_rover(&patch, [150.0, 150.0], &exact, 3)
+        .unwrap()
+        .geometry_errors;
+    assert_eq!(
+        (e.heading_error_deg, e.scale, e.mosaic_offset_m),
+        (0.0, 1.0, [0.0, 0.0])
+    );
+}
+
+/// Each orbital epoch change alters the image, and switching all of them off restores the
+/// old "same truth, perfect geometry" image exactly.
+#[test]
+fn orbital_epoch_changes_alter_the_image_and_switch_off() {
+    // Sand in the east of the hand map: ripples live there.
+    let patch = truth_patch(&hand_map(), [1170.0, 1900.0], 25.0, 2).unwrap();
+    assert!(patch.sand.data.iter().any(|&s| s > 0.99));
+    let none = OrbitalParams {
+        albedo_change_sigma: 0.0,
+        dust_devil_tracks_per_ha: 0.0,
+        ripple_migration_m: 0.0,
+        ortho_displacement_sigma_m: 0.0,
+        ..OrbitalParams::default()
+    };
+    let base = render_orbital(&patch, &none, 5).unwrap().appearance.data;
+    for changed in [
+        OrbitalParams {
+            albedo_change_sigma: 0.1,
+            ..none
+        },
+        OrbitalParams {
+            dust_devil_tracks_per_ha: 20.0,
+            ..none
+        },
+        OrbitalParams {
+            ripple_migration_m: 1.5,
+            ..none
+        },
+        OrbitalParams {
+            ortho_displacement_sigma_m: 0.3,
+            ..none
+        },
+    ] {
+        let img = render_orbital(&patch, &changed, 5).unwrap().appearance.data;
+        let differing = img.iter().zip(&base).filter(|(a, b)| a != b).count();
+        assert!(differing > base.len() / 50, "{changed:?}: {differing}");
+    }
+    // A full ripple wavelength of migration is no migration.
+    let full = OrbitalParams {
+        ripple_migration_m: 3.0,
+        ..none
+    };
+    let img = render_orbital(&patch, &full, 5).unwrap().appearance.data;
+    let differing = img.iter().zip(&base).filter(|(a, b)| a != b).count();
+    assert!(differing < base.len() / 100, "{differing}");
 }

@@ -55,12 +55,28 @@ pub struct RoverLighting {
     pub wedges: Vec<WedgeResponse>,
 }
 
+/// The geometric errors drawn for one observation: truth, for diagnostics and tests only.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct RoverGeometryErrors {
+    /// Heading error of the mosaic, degrees: the mosaic is the truth rotated counter-clockwise
+    /// (seen from above) by this angle about its centre.
+    pub heading_error_deg: f64,
+    /// Scale of the mosaic, dimensionless: ground `r` m away appears `r × scale` m away.
+    pub scale: f64,
+    /// Map position of the mosaic centre minus the rover's true position, metres (east, north):
+    /// the best any matcher can do is to find the rover here.
+    pub mosaic_offset_m: [f64; 2],
+}
+
 /// The rover's post-drive observation: a top-down orthomosaic and DEM centred on the rover.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RoverObservation {
     /// Orthomosaic, [`ORTHO_SIZE_PX`]² pixels of [`ORTHO_RESOLUTION_M_PER_PX`] (60 m square)
-    /// whose centre (the corner between the four middle pixels) is the rover's true position.
-    /// Invalid pixels hold 0.
+    /// whose centre (the corner between the four middle pixels) is where the rover believes it
+    /// is in its own frame: the true position plus [`RoverGeometryErrors::mosaic_offset_m`],
+    /// with the content rotated by the heading error and scaled by the scale error about it.
+    /// The raster's georeference is the true geometry's (centred on the true position), for
+    /// scoring only. Invalid pixels hold 0.
     pub ortho: Raster<u8>,
     /// Per ortho pixel, row-major: whether stereo mapped it (in a wedge, within range, not the
     /// rover body, not occluded, no stereo dropout).
@@ -75,6 +91,9 @@ pub struct RoverObservation {
     pub true_position_m: [f64; 2],
     /// The sun and wedge responses this observation was rendered with: truth, for diagnostics.
     pub lighting: RoverLighting,
+    /// The heading, scale and mosaic-centre errors it was rendered with: truth, for
+    /// diagnostics.
+    pub geometry_errors: RoverGeometryErrors,
 }
 
 impl RoverObservation {
@@ -88,6 +107,13 @@ impl RoverObservation {
 /// A uniform draw from `[lo, hi]` (`lo == hi` allowed).
 fn draw(rng: &mut ChaCha8Rng, [lo, hi]: [f64; 2]) -> f64 {
     lo + (hi - lo) * rng.random::<f64>()
+}
+
+/// A standard normal draw (Box–Muller on two uniforms).
+fn normal(rng: &mut ChaCha8Rng) -> f64 {
+    let u1 = 1.0 - rng.random::<f64>();
+    let u2 = rng.random::<f64>();
+    (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
 }
 
 /// The wedge whose centre is nearest to `azimuth_deg` among those containing it.
@@ -165,6 +191,21 @@ pub fn render_rover(
         })
         .collect();
     let sun = Sun::new(sun_azimuth_deg, sun_elevation_deg, res);
+    // Geometric errors of the mosaic (drawn after the lighting so those draws do not move).
+    let geometry_errors = RoverGeometryErrors {
+        heading_error_deg: p.heading_sigma_deg * normal(&mut rng),
+        scale: 1.0 + p.scale_sigma * normal(&mut rng),
+        mosaic_offset_m: [
+            p.mosaic_offset_sigma_m * normal(&mut rng),
+            p.mosaic_offset_sigma_m * normal(&mut rng),
+        ],
+    };
+    let (rot_sin, rot_cos) = geometry_errors.heading_error_deg.to_radians().sin_cos();
+    let inv_scale = 1.0 / geometry_errors.scale;
+    let mosaic_center = [
+        rover_m[0] + geometry_errors.mosaic_offset_m[0],
+        rover_m[1] + geometry_errors.mosaic_offset_m[1],
+    ];
 
     let camera_z = footprint_mean_height(&hf, cam, p.min_range_m) + p.mast_height_m as f32;
 
@@ -224,7 +265,14 @@ pub fn render_rover(
         .enumerate()
         .for_each(|(row, ((o_row, v_row), h_row))| {
             for col in 0..n {
-                let (x, y) = ortho_geo.center_of(col, row);
+                // Where the rover maps this pixel, relative to its mosaic centre, back to the
+                // ground point it actually shows: undo the scale, then the rotation.
+                let (ex, ey) = ortho_geo.center_of(col, row);
+                let (qx, qy) = ((ex - rover_m[0]) * inv_scale, (ey - rover_m[1]) * inv_scale);
+                let (x, y) = (
+                    mosaic_center[0] + rot_cos * qx + rot_sin * qy,
+                    mosaic_center[1] - rot_sin * qx + rot_cos * qy,
+                );
                 let (dx, dy) = (x - rover_m[0], y - rover_m[1]);
                 let range_m = dx.hypot(dy);
                 if range_m < p.min_range_m || range_m > p.max_range_m {
@@ -308,6 +356,7 @@ pub fn render_rover(
             sun_elevation_deg,
             wedges,
         },
+        geometry_errors,
     })
 }
 

@@ -60,6 +60,20 @@ pub struct RoverImagingParams {
     pub stereo_dropout_at_max_range: f64,
     /// Valid 25 cm samples a 1 m rover DEM cell needs (of 16) to be valid, 1..=16. (default: 4)
     pub dem_min_samples: usize,
+    /// Standard deviation of the heading (attitude) error of the mosaic, degrees, 0..10: the
+    /// whole orthomosaic is rotated about the rover by a seeded Gaussian angle. The matcher
+    /// assumes an accurate orientation from SunFind (paper 000 §5); sun-sensor and IMU
+    /// heading knowledge is good to a fraction of a degree to ~1° (judgement). (default: 0.5)
+    pub heading_sigma_deg: f64,
+    /// Standard deviation of the relative scale error of the mosaic, 0..0.1: mast height,
+    /// stereo baseline and camera calibration errors make the rover map ground `r` m away at
+    /// `r × (1 + ε)`. (default: 0.003 — judgement, 9 cm at 30 m)
+    pub scale_sigma: f64,
+    /// Standard deviation of the offset between the rover's true position and the centre of
+    /// its own mosaic frame, metres per axis, 0..1 (the mosaic is built about the rover
+    /// navigation frame origin, whose position relative to the cameras is known to a few cm;
+    /// localization error can be no better). (default: 0.03 — judgement)
+    pub mosaic_offset_sigma_m: f64,
 }
 
 impl Default for RoverImagingParams {
@@ -83,6 +97,9 @@ impl Default for RoverImagingParams {
             height_sigma_m_at_10m: 0.02,
             stereo_dropout_at_max_range: 0.3,
             dem_min_samples: 4,
+            heading_sigma_deg: 0.5,
+            scale_sigma: 0.003,
+            mosaic_offset_sigma_m: 0.03,
         }
     }
 }
@@ -178,6 +195,21 @@ impl RoverImagingParams {
             self.dem_min_samples as f64,
             "in 1..=16",
             |v| (1.0..=16.0).contains(&v),
+        )?;
+        check_param(
+            "heading_sigma_deg",
+            self.heading_sigma_deg,
+            "in [0, 10]",
+            |v| (0.0..=10.0).contains(&v),
+        )?;
+        check_param("scale_sigma", self.scale_sigma, "in [0, 0.1]", |v| {
+            (0.0..=0.1).contains(&v)
+        })?;
+        check_param(
+            "mosaic_offset_sigma_m",
+            self.mosaic_offset_sigma_m,
+            "in [0, 1]",
+            |v| (0.0..=1.0).contains(&v),
         )
     }
 }

@@ -24,6 +24,26 @@ const DETAIL_WAVELENGTH_M: f64 = 3.0;
 /// Wavelength of the albedo texture, metres.
 const TEXTURE_WAVELENGTH_M: f64 = 2.0;
 
+/// Crest-to-crest spacing of the aeolian ripples on sand, metres. Large (decimetre-high)
+/// ripples on Martian sand have 1–5 m spacing (Lapotre et al., Science 353, 2016); 3 m is a
+/// judgement in that range.
+pub(super) const RIPPLE_WAVELENGTH_M: f64 = 3.0;
+/// Half the crest-to-trough height of the ripples, metres (judgement: 10 cm crest to trough).
+pub(super) const RIPPLE_AMPLITUDE_M: f64 = 0.05;
+/// Direction the ripple crests run, degrees clockwise from north. One regional wind sets every
+/// ripple's orientation (judgement: the value is arbitrary, the uniformity is the physics).
+pub(super) const RIPPLE_CREST_AZIMUTH_DEG: f64 = 20.0;
+
+/// Height of the ripple field (before the sand weight) at map point `(x, y)` after the ripples
+/// migrated `migration_m` downwind (perpendicular to the crests), metres.
+#[inline]
+pub(super) fn ripple_height_m(x: f64, y: f64, migration_m: f64) -> f64 {
+    // Unit vector across the crests: the crest direction turned 90° clockwise.
+    let across = (RIPPLE_CREST_AZIMUTH_DEG + 90.0).to_radians();
+    let s = x * across.sin() + y * across.cos() - migration_m;
+    RIPPLE_AMPLITUDE_M * (std::f64::consts::TAU * s / RIPPLE_WAVELENGTH_M).sin()
+}
+
 const SALT_DETAIL: u64 = 1;
 const SALT_TEXTURE: u64 = 2;
 const SALT_GRAIN: u64 = 3;
@@ -31,16 +51,35 @@ const SALT_ROCKS: u64 = 4;
 
 /// The true terrain around a point: what the orbital and rover renderers image.
 ///
-/// Both rasters share one 0.25 m grid ([`TRUTH_RESOLUTION_M_PER_PX`]).
+/// All rasters share one 0.25 m grid ([`TRUTH_RESOLUTION_M_PER_PX`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct TruthPatch {
-    /// Surface height, metres (map DEM + fine detail + rocks).
+    /// Surface height, metres (map DEM + fine detail + sand ripples + rocks).
     pub height_m: Raster<f32>,
     /// Lambertian albedo, 0..1 (dimensionless).
     pub albedo: Raster<f32>,
+    /// Share of loose sand at each pixel, 0..1 (the sand class blended across class borders):
+    /// where the ripples are, and where they move between the orbital and the rover epoch.
+    pub sand: Raster<f32>,
 }
 
 impl TruthPatch {
+    /// A hand-built patch with no sand (so nothing moves between epochs).
+    #[must_use]
+    pub fn from_rasters(height_m: Raster<f32>, albedo: Raster<f32>) -> Self {
+        let sand = Raster {
+            width: height_m.width,
+            height: height_m.height,
+            geo: height_m.geo,
+            data: vec![0.0; height_m.data.len()],
+        };
+        Self {
+            height_m,
+            albedo,
+            sand,
+        }
+    }
+
     /// Checks a (possibly hand-built) patch before rendering: both rasters the same size with
     /// width × height samples, and a positive finite pixel size.
     pub(super) fn check(&self) -> Result<(), SyntheticError> {
@@ -55,6 +94,14 @@ impl TruthPatch {
                 height_samples: h.data.len(),
                 albedo_px: [a.width, a.height],
                 albedo_samples: a.data.len(),
+            });
+        }
+        let sd = &self.sand;
+        if sd.width != h.width || sd.height != h.height || sd.data.len() != h.data.len() {
+            return Err(SyntheticError::InvalidParameter {
+                field: "patch.sand",
+                value: sd.data.len() as f64,
+                expected: "as many sand samples as height samples, on the same grid",
             });
         }
         let res = h.geo.resolution_m_per_px;
@@ -80,6 +127,8 @@ struct ClassLook {
     detail_m: f64,
     /// Rocks per square metre.
     rocks_per_m2: f64,
+    /// Share of loose sand (1 on the sand class, 0 elsewhere).
+    sand: f64,
 }
 
 impl ClassLook {
@@ -91,18 +140,21 @@ impl ClassLook {
                 texture: 0.04,
                 detail_m: 0.03,
                 rocks_per_m2: 0.004,
+                sand: 1.0,
             },
             Some(TerrainClass::Bedrock) => Self {
                 albedo: 0.29,
                 texture: 0.16,
                 detail_m: 0.20,
                 rocks_per_m2: 0.4,
+                sand: 0.0,
             },
             Some(TerrainClass::Soil) | None => Self {
                 albedo: 0.22,
                 texture: 0.09,
                 detail_m: 0.08,
                 rocks_per_m2: 0.08,
+                sand: 0.0,
             },
         }
     }
@@ -111,6 +163,7 @@ impl ClassLook {
         self.albedo += k * o.albedo;
         self.texture += k * o.texture;
         self.detail_m += k * o.detail_m;
+        self.sand += k * o.sand;
     }
 
     /// The look at map point `(x, y)`: classes blended bilinearly between terrain pixel centres,
@@ -199,7 +252,9 @@ fn rocks_in_cell(seed: u64, ix: i64, iy: i64, terrain: &Raster<u8>, out: &mut Ve
 /// lattice of the map DEM's origin so that its 1 m blocks line up with 1 m map pixels.
 /// Heights are the bilinear map DEM plus fine fBm detail (±3 cm on sand to ±20 cm on bedrock)
 /// plus rocks (ellipsoidal domes 0.1–1.5 m across, 0.3–0.8 × their diameter high; about 0.4
-/// per m² on bedrock, 0.08 on soil, 0.004 on sand; one in twenty is over 0.5 m across).
+/// per m² on bedrock, 0.08 on soil, 0.004 on sand; one in twenty is over 0.5 m across), plus
+/// on sand aeolian ripples (3 m crest spacing, 10 cm crest to trough, crests all running 20°
+/// east of north), weighted by the blended sand share that [`TruthPatch::sand`] records.
 /// Albedo follows the terrain class (sand 0.15 and smooth, soil 0.22, bedrock 0.29 and
 /// textured; rocks 0.19–0.27) with seeded texture; classes blend over one map pixel. The map's
 /// appearance layer is not used: [`render_orbital`](super::render_orbital) makes its own.
@@ -266,21 +321,34 @@ pub fn truth_patch(
     let xs: Vec<f64> = (0..n).map(|col| geo.center_of(col, 0).0).collect();
     let mut height = vec![0.0f32; n * n];
     let mut albedo = vec![0.0f32; n * n];
+    let mut sand = vec![0.0f32; n * n];
     height
         .par_chunks_mut(n)
         .zip(albedo.par_chunks_mut(n))
+        .zip(sand.par_chunks_mut(n))
         .enumerate()
-        .for_each(|(row, (h_row, a_row))| {
+        .for_each(|(row, ((h_row, a_row), s_row))| {
             let y = geo.center_of(0, row).1;
             let (mut detail_row, mut texture_row) = (vec![0.0; n], vec![0.0; n]);
             detail.row(&xs, y, &mut detail_row);
             texture.row(&xs, y, &mut texture_row);
-            for (col, (h, a)) in h_row.iter_mut().zip(a_row.iter_mut()).enumerate() {
+            for (col, ((h, a), sd)) in h_row
+                .iter_mut()
+                .zip(a_row.iter_mut())
+                .zip(s_row.iter_mut())
+                .enumerate()
+            {
                 let x = xs[col];
                 let look = ClassLook::blended(&layers.terrain, x, y);
                 // Pixel centres lie inside the DEM (checked above); the fallback is never used.
                 let ground = f64::from(layers.dem.sample_bilinear(x, y).unwrap_or(0.0));
-                *h = (ground + look.detail_m * detail_row[col]) as f32;
+                let ripples = if look.sand > 0.0 {
+                    look.sand * ripple_height_m(x, y, 0.0)
+                } else {
+                    0.0
+                };
+                *h = (ground + look.detail_m * detail_row[col] + ripples) as f32;
+                *sd = look.sand as f32;
                 // World pixel indices, so the grain does not depend on where the patch starts.
                 let (gx, gy) = (
                     floor_i64(x / TRUTH_RESOLUTION_M_PER_PX),
@@ -313,6 +381,12 @@ pub fn truth_patch(
             height: n,
             geo,
             data: albedo,
+        },
+        sand: Raster {
+            width: n,
+            height: n,
+            geo,
+            data: sand,
         },
     })
 }

@@ -1,0 +1,579 @@
+//! A synthetic stand-in for the paper's benchmark of 264 post-drive panoramas (paper 000 §4):
+//! seeded cases over rocky, plain and dune terrain, 3–5 stereo wedges and a spread of lighting
+//! differences from the orbital image, each rendered with every error source of
+//! [`crate::synthetic`], localized from a prior up to ~20 m off, and scored.
+//!
+//! - [`benchmark_cases`] draws the cases (`n`, seed); the paper's set has [`PAPER_CASE_COUNT`].
+//! - [`BenchmarkMaps::generate`] makes the three procedural terrain maps in memory
+//!   ([`terrain_params`] defines them).
+//! - [`run_benchmark`] renders and localizes every case (rayon over cases; the results are
+//!   collected in case order and the statistics computed sequentially, so the report does not
+//!   depend on the thread count) and returns a [`BenchmarkReport`].
+//!
+//! ```no_run
+//! use localization::benchmark_set::{BenchmarkMaps, benchmark_cases, run_benchmark};
+//! use localization::matcher::MatchParams;
+//!
+//! let maps = BenchmarkMaps::generate(1);
+//! let cases = benchmark_cases(24, 7);
+//! let report = run_benchmark(&cases, |k| maps.get(k), &MatchParams::default());
+//! println!("mean error {:.2} m", report.all.mean_m);
+//! ```
+
+use maps::procedural::{DuneField, TerrainParams, generate};
+use maps::{GeoTransform, MapLayers};
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
+
+use crate::matcher::{MatchParams, OrbitalMap, Rejection, RoverImages, localize};
+use crate::synthetic::{
+    ORTHO_RESOLUTION_M_PER_PX, ORTHO_SIZE_PX, OrbitalParams, RoverImagingParams, render_orbital,
+    render_rover, truth_patch,
+};
+
+/// Panoramas in the paper's benchmark (paper 000 §4).
+pub const PAPER_CASE_COUNT: usize = 264;
+/// Side of each procedural benchmark map, metres (1 m pixels).
+pub const MAP_SIZE_M: usize = 600;
+/// Largest distance of the prior from the true position, metres.
+pub const MAX_PRIOR_OFFSET_M: f64 = 20.0;
+/// True positions are drawn at least this far from the map edge, metres: room for the prior
+/// offset, the search radius, half the orthomosaic and the patch margin.
+const POSITION_MARGIN_M: f64 = 140.0;
+/// Extra truth patch beyond the search window, metres (shadows cast from outside the patch
+/// are missing, so keep them out of the window).
+const PATCH_MARGIN_M: f64 = 4.0;
+
+/// The terrain type of a benchmark case (paper 000 Fig. 8: rocky, plains, dunes).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize)]
+pub enum TerrainKind {
+    /// Mostly bedrock with craters: rich texture, many rocks.
+    Rocky,
+    /// Mostly soil: weaker texture, few rocks.
+    Plain,
+    /// Large dune fields: sand, repetitive ripples and dune crests, almost no rocks.
+    Dunes,
+}
+
+impl TerrainKind {
+    /// Every kind, in order.
+    pub const ALL: [TerrainKind; 3] = [TerrainKind::Rocky, TerrainKind::Plain, TerrainKind::Dunes];
+}
+
+/// The generator settings of the procedural map of `kind` ([`MAP_SIZE_M`] square, 1 m
+/// pixels, x and y in `0..MAP_SIZE_M`).
+#[must_use]
+pub fn terrain_params(kind: TerrainKind, seed: u64) -> TerrainParams {
+    let size = MAP_SIZE_M;
+    let base = TerrainParams {
+        seed,
+        width_px: size,
+        height_px: size,
+        geo: GeoTransform::new(0.0, size as f64, 1.0),
+        ..TerrainParams::default()
+    };
+    let half = size as f64 / 2.0;
+    match kind {
+        TerrainKind::Rocky => TerrainParams {
+            bedrock_fraction: 0.7,
+            sand_fraction: 0.05,
+            crater_density_per_km2: 25.0,
+            crater_radius_min_m: 3.0,
+            crater_radius_max_m: 40.0,
+            ridge_count: 4,
+            ..base
+        },
+        TerrainKind::Plain => TerrainParams {
+            bedrock_fraction: 0.05,
+            sand_fraction: 0.05,
+            relief_m: 5.0,
+            crater_density_per_km2: 2.0,
+            ridge_count: 0,
+            ..base
+        },
+        TerrainKind::Dunes => TerrainParams {
+            dune_fields: vec![DuneField::new([half, half], 1.5 * half, 30.0)],
+            sand_fraction: 0.6,
+            bedrock_fraction: 0.05,
+            crater_density_per_km2: 0.5,
+            ridge_count: 0,
+            ..base
+        },
+    }
+}
+
+/// The three benchmark maps, generated once.
+#[derive(Clone, Debug)]
+pub struct BenchmarkMaps {
+    /// Map of [`TerrainKind::Rocky`].
+    pub rocky: MapLayers,
+    /// Map of [`TerrainKind::Plain`].
+    pub plain: MapLayers,
+    /// Map of [`TerrainKind::Dunes`].
+    pub dunes: MapLayers,
+}
+
+impl BenchmarkMaps {
+    /// Generates the three maps of [`terrain_params`] from `seed` (about a second in release).
+    #[must_use]
+    pub fn generate(seed: u64) -> Self {
+        Self {
+            rocky: generate(&terrain_params(TerrainKind::Rocky, seed)),
+            plain: generate(&terrain_params(TerrainKind::Plain, seed.wrapping_add(1))),
+            dunes: generate(&terrain_params(TerrainKind::Dunes, seed.wrapping_add(2))),
+        }
+    }
+
+    /// The map of `kind`.
+    #[must_use]
+    pub fn get(&self, kind: TerrainKind) -> &MapLayers {
+        match kind {
+            TerrainKind::Rocky => &self.rocky,
+            TerrainKind::Plain => &self.plain,
+            TerrainKind::Dunes => &self.dunes,
+        }
+    }
+}
+
+/// How the rover's sun differs from the orbital image's mid-afternoon sun.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize)]
+pub enum LightingKind {
+    /// Post-drive, mid-afternoon like the orbital image (the usual case, paper 000 §4).
+    Afternoon,
+    /// Late afternoon: lower sun, longer shadows.
+    LateAfternoon,
+    /// Mid-drive, late morning: the sun on the other side, shadows reversed.
+    LateMorning,
+}
+
+/// One benchmark panorama.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct BenchmarkCase {
+    /// Index in the set.
+    pub id: usize,
+    /// Terrain type (which benchmark map).
+    pub terrain: TerrainKind,
+    /// Stereo wedges in the panorama, 3..=5.
+    pub wedges: u8,
+    /// Class of the lighting difference.
+    pub lighting: LightingKind,
+    /// The rover's sun azimuth, degrees clockwise from north (the orbital sun is at
+    /// [`OrbitalParams::default`]'s 250°).
+    pub sun_azimuth_deg: f64,
+    /// The rover's sun elevation, degrees (the orbital sun is at 35°).
+    pub sun_elevation_deg: f64,
+    /// Seed of everything else: position, prior offset, truth, orbital and rover renders.
+    pub seed: u64,
+}
+
+impl BenchmarkCase {
+    /// Angle between the rover's sun and the orbital sun, degrees.
+    #[must_use]
+    pub fn sun_angle_difference_deg(&self) -> f64 {
+        let o = OrbitalParams::default();
+        let dir = |az: f64, el: f64| {
+            let (az, el) = (az.to_radians(), el.to_radians());
+            [az.sin() * el.cos(), az.cos() * el.cos(), el.sin()]
+        };
+        let a = dir(self.sun_azimuth_deg, self.sun_elevation_deg);
+        let b = dir(o.sun_azimuth_deg, o.sun_elevation_deg);
+        let dot = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        dot.clamp(-1.0, 1.0).acos().to_degrees()
+    }
+}
+
+/// `n` benchmark cases drawn from `seed` (the paper's set has [`PAPER_CASE_COUNT`]).
+///
+/// Terrain cycles rocky, plain, dunes (a third each); wedges are 5 in half the cases, 4 and 3 in
+/// a quarter each (Perseverance usually takes five, sometimes three or four, paper 000 §4);
+/// lighting is mid-afternoon like the orbital image in 60 % (sun azimuth 230–290°, elevation
+/// 25–45°), late afternoon in 25 % (260–300°, 10–22°) and late morning in 15 % (60–120°,
+/// 30–50°). These shares are a judgement: the paper says most panoramas are post-drive
+/// afternoon and some mid-drive late morning, without numbers.
+#[must_use]
+pub fn benchmark_cases(n: usize, seed: u64) -> Vec<BenchmarkCase> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    (0..n)
+        .map(|id| {
+            let terrain = TerrainKind::ALL[id % 3];
+            let u: f64 = rng.random();
+            let wedges = if u < 0.5 {
+                5
+            } else if u < 0.75 {
+                4
+            } else {
+                3
+            };
+            let l: f64 = rng.random();
+            let (lighting, az, el) = if l < 0.6 {
+                (LightingKind::Afternoon, [230.0, 290.0], [25.0, 45.0])
+            } else if l < 0.85 {
+                (LightingKind::LateAfternoon, [260.0, 300.0], [10.0, 22.0])
+            } else {
+                (LightingKind::LateMorning, [60.0, 120.0], [30.0, 50.0])
+            };
+            let mut draw = |[lo, hi]: [f64; 2]| lo + (hi - lo) * rng.random::<f64>();
+            let sun_azimuth_deg = draw(az);
+            let sun_elevation_deg = draw(el);
+            BenchmarkCase {
+                id,
+                terrain,
+                wedges,
+                lighting,
+                sun_azimuth_deg,
+                sun_elevation_deg,
+                seed: rng.random(),
+            }
+        })
+        .collect()
+}
+
+/// The outcome of one case.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct CaseResult {
+    /// The case's id.
+    pub id: usize,
+    /// Its terrain.
+    pub terrain: TerrainKind,
+    /// Its wedge count.
+    pub wedges: u8,
+    /// Its lighting class.
+    pub lighting: LightingKind,
+    /// True rover position, map metres.
+    pub truth_m: [f64; 2],
+    /// Prior position given to the matcher, map metres.
+    pub prior_m: [f64; 2],
+    /// The matcher's estimate, map metres (`None` if the case failed to run).
+    pub estimate_m: Option<[f64; 2]>,
+    /// Distance of the estimate from the truth, metres (`None` if the case failed to run).
+    pub error_m: Option<f64>,
+    /// The matcher's σ, metres.
+    pub sigma_m: Option<f64>,
+    /// The matcher's peak ratio.
+    pub peak_ratio: Option<f64>,
+    /// Valid fraction of the orthomosaic.
+    pub valid_fraction: Option<f64>,
+    /// Why the matcher rejected its result, if it did.
+    pub rejection: Option<Rejection>,
+    /// Why the case could not be run at all (bad synthetic input or localize error), if so.
+    pub failure: Option<String>,
+    /// Heading error the rover mosaic was rendered with, degrees (truth, diagnostics).
+    pub heading_error_deg: Option<f64>,
+}
+
+/// Error statistics over a set of cases, metres.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
+pub struct ErrorStats {
+    /// Cases counted.
+    pub count: usize,
+    /// Mean error.
+    pub mean_m: f64,
+    /// Median error.
+    pub median_m: f64,
+    /// 99th percentile (nearest rank).
+    pub p99_m: f64,
+    /// Largest error.
+    pub max_m: f64,
+    /// Cases with an error over 1 m.
+    pub over_1m: usize,
+    /// Cases with an error over 2 m.
+    pub over_2m: usize,
+}
+
+impl ErrorStats {
+    /// Statistics of `errors` (any order; NaN-free). Empty input gives all zeros.
+    #[must_use]
+    pub fn of(errors: &[f64]) -> Self {
+        if errors.is_empty() {
+            return Self::default();
+        }
+        let mut e = errors.to_vec();
+        e.sort_by(f64::total_cmp);
+        let n = e.len();
+        let median_m = if n % 2 == 1 {
+            e[n / 2]
+        } else {
+            0.5 * (e[n / 2 - 1] + e[n / 2])
+        };
+        // Nearest rank: the smallest value with at least 99 % of the values at or below it.
+        let rank = ((0.99 * n as f64).ceil() as usize).clamp(1, n);
+        Self {
+            count: n,
+            mean_m: e.iter().sum::<f64>() / n as f64,
+            median_m,
+            p99_m: e[rank - 1],
+            max_m: e[n - 1],
+            over_1m: e.iter().filter(|&&v| v > 1.0).count(),
+            over_2m: e.iter().filter(|&&v| v > 2.0).count(),
+        }
+    }
+}
+
+/// What a benchmark run found.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct BenchmarkReport {
+    /// Statistics over every case that ran, accepted or not (the paper reports all 264).
+    pub all: ErrorStats,
+    /// Statistics over the cases the matcher accepted.
+    pub accepted: ErrorStats,
+    /// Statistics per terrain kind (every case that ran), in [`TerrainKind::ALL`] order.
+    pub by_terrain: Vec<(TerrainKind, ErrorStats)>,
+    /// Rejections by reason (`"TooFewValid"`, `"Ambiguous"`, `"Imprecise"`, `"OnWindowEdge"`),
+    /// with counts, in that order, zero counts left out.
+    pub rejections: Vec<(&'static str, usize)>,
+    /// Cases that could not be run.
+    pub failures: usize,
+    /// One row per case, in case order.
+    pub rows: Vec<CaseResult>,
+}
+
+fn rejection_name(r: &Rejection) -> &'static str {
+    match r {
+        Rejection::TooFewValid { .. } => "TooFewValid",
+        Rejection::Ambiguous { .. } => "Ambiguous",
+        Rejection::Imprecise { .. } => "Imprecise",
+        Rejection::OnWindowEdge => "OnWindowEdge",
+    }
+}
+
+/// Renders and localizes every case against `layers_for(case.terrain)` with `params` and the
+/// default imaging settings ([`OrbitalParams::default`], [`RoverImagingParams::default`] with
+/// the case's wedges and sun).
+///
+/// Per case, from its seed: a true position uniform over the map at least 140 m from its
+/// edge, a prior offset uniform in direction with a length uniform in 0..[`MAX_PRIOR_OFFSET_M`];
+/// a truth patch centred on the prior covering the search window (prior ± search radius ±
+/// half the orthomosaic ± 4 m); the orbital products of it; the rover observation at the
+/// true position; [`localize`] with both DEMs. The error is the distance of the estimate from
+/// the true position. Cases run in parallel; rows come back in case order and the statistics
+/// are computed sequentially from them, so the report is the same on any thread count.
+pub fn run_benchmark<'a, F>(
+    cases: &[BenchmarkCase],
+    layers_for: F,
+    params: &MatchParams,
+) -> BenchmarkReport
+where
+    F: Fn(TerrainKind) -> &'a MapLayers + Sync,
+{
+    run_benchmark_with(cases, layers_for, params, &BenchmarkImaging::default())
+}
+
+/// The imaging settings of a benchmark run: the defaults, or any error source switched off or
+/// scaled for an ablation. The rover's `wedge_count` and sun ranges are overridden per case.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct BenchmarkImaging {
+    /// Orbital products settings.
+    pub orbital: OrbitalParams,
+    /// Rover imaging settings (wedges and sun taken from each case).
+    pub rover: RoverImagingParams,
+}
+
+impl BenchmarkImaging {
+    /// Every added error source off: no orbital epoch change (albedo change, dust devil
+    /// tracks, ripple migration), no ortho displacement, the old 0.7 px PSF, and no rover
+    /// heading, scale or mosaic-centre error. Lighting, wedges, occlusion and stereo noise stay.
+    #[must_use]
+    pub fn without_added_errors() -> Self {
+        Self {
+            orbital: OrbitalParams {
+                blur_sigma_px: 0.7,
+                albedo_change_sigma: 0.0,
+                dust_devil_tracks_per_ha: 0.0,
+                ripple_migration_m: 0.0,
+                ortho_displacement_sigma_m: 0.0,
+                ..OrbitalParams::default()
+            },
+            rover: RoverImagingParams {
+                heading_sigma_deg: 0.0,
+                scale_sigma: 0.0,
+                mosaic_offset_sigma_m: 0.0,
+                ..RoverImagingParams::default()
+            },
+        }
+    }
+}
+
+/// [`run_benchmark`] with explicit imaging settings.
+pub fn run_benchmark_with<'a, F>(
+    cases: &[BenchmarkCase],
+    layers_for: F,
+    params: &MatchParams,
+    imaging: &BenchmarkImaging,
+) -> BenchmarkReport
+where
+    F: Fn(TerrainKind) -> &'a MapLayers + Sync,
+{
+    let rows: Vec<CaseResult> = cases
+        .par_iter()
+        .map(|case| run_case(case, layers_for(case.terrain), params, imaging))
+        .collect();
+    report_of(rows)
+}
+
+/// The report of finished rows (statistics computed sequentially, in row order).
+#[must_use]
+pub fn report_of(rows: Vec<CaseResult>) -> BenchmarkReport {
+    let all: Vec<f64> = rows.iter().filter_map(|r| r.error_m).collect();
+    let accepted: Vec<f64> = rows
+        .iter()
+        .filter(|r| r.rejection.is_none())
+        .filter_map(|r| r.error_m)
+        .collect();
+    let by_terrain = TerrainKind::ALL
+        .iter()
+        .map(|&k| {
+            let e: Vec<f64> = rows
+                .iter()
+                .filter(|r| r.terrain == k)
+                .filter_map(|r| r.error_m)
+                .collect();
+            (k, ErrorStats::of(&e))
+        })
+        .collect();
+    let rejections = ["TooFewValid", "Ambiguous", "Imprecise", "OnWindowEdge"]
+        .into_iter()
+        .map(|name| {
+            let n = rows
+                .iter()
+                .filter(|r| r.rejection.as_ref().map(rejection_name) == Some(name))
+                .count();
+            (name, n)
+        })
+        .filter(|&(_, n)| n > 0)
+        .collect();
+    BenchmarkReport {
+        all: ErrorStats::of(&all),
+        accepted: ErrorStats::of(&accepted),
+        by_terrain,
+        rejections,
+        failures: rows.iter().filter(|r| r.failure.is_some()).count(),
+        rows,
+    }
+}
+
+/// One case: render, localize, score.
+fn run_case(
+    case: &BenchmarkCase,
+    layers: &MapLayers,
+    params: &MatchParams,
+    imaging: &BenchmarkImaging,
+) -> CaseResult {
+    let mut rng = ChaCha8Rng::seed_from_u64(case.seed);
+    let (x0, y0, x1, y1) = layers.dem.extent_m();
+    let (lo_x, hi_x) = (
+        x0.min(x1) + POSITION_MARGIN_M,
+        x0.max(x1) - POSITION_MARGIN_M,
+    );
+    let (lo_y, hi_y) = (
+        y0.min(y1) + POSITION_MARGIN_M,
+        y0.max(y1) - POSITION_MARGIN_M,
+    );
+    let truth_m = [
+        lo_x + (hi_x - lo_x).max(0.0) * rng.random::<f64>(),
+        lo_y + (hi_y - lo_y).max(0.0) * rng.random::<f64>(),
+    ];
+    let angle = std::f64::consts::TAU * rng.random::<f64>();
+    let dist = MAX_PRIOR_OFFSET_M * rng.random::<f64>();
+    let prior_m = [
+        truth_m[0] + dist * angle.cos(),
+        truth_m[1] + dist * angle.sin(),
+    ];
+    let (truth_seed, orbital_seed, rover_seed): (u64, u64, u64) =
+        (rng.random(), rng.random(), rng.random());
+    let mut row = CaseResult {
+        id: case.id,
+        terrain: case.terrain,
+        wedges: case.wedges,
+        lighting: case.lighting,
+        truth_m,
+        prior_m,
+        estimate_m: None,
+        error_m: None,
+        sigma_m: None,
+        peak_ratio: None,
+        valid_fraction: None,
+        rejection: None,
+        failure: None,
+        heading_error_deg: None,
+    };
+    let half_ortho_m = 0.5 * ORTHO_SIZE_PX as f64 * ORTHO_RESOLUTION_M_PER_PX;
+    let half_size_m = params.search_radius_m + half_ortho_m + PATCH_MARGIN_M;
+    let rover_params = RoverImagingParams {
+        wedge_count: usize::from(case.wedges),
+        sun_azimuth_range_deg: [case.sun_azimuth_deg; 2],
+        sun_elevation_range_deg: [case.sun_elevation_deg; 2],
+        ..imaging.rover
+    };
+    let rendered = truth_patch(layers, prior_m, half_size_m, truth_seed).and_then(|patch| {
+        let orbital = render_orbital(&patch, &imaging.orbital, orbital_seed)?;
+        let rover = render_rover(&patch, truth_m, &rover_params, rover_seed)?;
+        Ok((orbital, rover))
+    });
+    let (orbital, rover) = match rendered {
+        Ok(v) => v,
+        Err(e) => {
+            row.failure = Some(e.to_string());
+            return row;
+        }
+    };
+    row.heading_error_deg = Some(rover.geometry_errors.heading_error_deg);
+    let map = OrbitalMap {
+        appearance: &orbital.appearance,
+        dem: Some(&orbital.dem),
+    };
+    let images = RoverImages {
+        ortho: &rover.ortho,
+        ortho_valid: &rover.valid,
+        dem: Some((&rover.dem, &rover.dem_valid)),
+    };
+    match localize(&map, &images, prior_m, params) {
+        Ok(m) => {
+            row.estimate_m = Some(m.position_m);
+            row.error_m = Some((m.position_m[0] - truth_m[0]).hypot(m.position_m[1] - truth_m[1]));
+            row.sigma_m = Some(m.sigma_m);
+            row.peak_ratio = Some(m.peak_ratio);
+            row.valid_fraction = Some(m.valid_fraction);
+            row.rejection = m.rejection;
+        }
+        Err(e) => row.failure = Some(e.to_string()),
+    }
+    row
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn stats_of_known_errors() {
+        let e: Vec<f64> = (1..=100).map(|k| f64::from(k) * 0.03).collect();
+        let s = ErrorStats::of(&e);
+        assert_eq!(s.count, 100);
+        assert!((s.mean_m - 1.515).abs() < 1e-12);
+        assert!((s.median_m - 1.515).abs() < 1e-12);
+        assert!((s.p99_m - 2.97).abs() < 1e-12);
+        assert!((s.max_m - 3.0).abs() < 1e-12);
+        assert_eq!((s.over_1m, s.over_2m), (67, 34));
+        assert_eq!(ErrorStats::of(&[]), ErrorStats::default());
+    }
+
+    #[test]
+    fn cases_spread_over_terrain_wedges_and_lighting() {
+        let cases = benchmark_cases(PAPER_CASE_COUNT, 1);
+        assert_eq!(cases.len(), 264);
+        assert_eq!(cases, benchmark_cases(PAPER_CASE_COUNT, 1));
+        for k in TerrainKind::ALL {
+            assert_eq!(cases.iter().filter(|c| c.terrain == k).count(), 88);
+        }
+        for w in 3..=5 {
+            assert!(cases.iter().filter(|c| c.wedges == w).count() > 40);
+        }
+        let morning = cases
+            .iter()
+            .filter(|c| c.lighting == LightingKind::LateMorning)
+            .count();
+        assert!((20..70).contains(&morning), "{morning}");
+        assert!(cases.iter().all(|c| (3..=5).contains(&c.wedges)));
+    }
+}
