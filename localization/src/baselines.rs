@@ -38,7 +38,7 @@
 //! Both use `rayon` (FFT rows/columns and offset rows for NCC; coarse offset rows for MI).
 //!
 //! ## References
-//! - Paper 000 §3 (related work: MI for appearance [26], NCC-based approaches [28]) and §4
+//! - Paper 000 §3 (related work: MI for appearance (its ref. 26), NCC-based approaches (ref. 28)) and §4
 //!   (masked NCC and mutual information produce more outliers and ambiguous peaks than census).
 //! - J. P. Lewis, "Fast normalized cross-correlation", Vision Interface 1995.
 //! - D. Padfield, "Masked object registration in the Fourier domain", IEEE TIP 2012.
