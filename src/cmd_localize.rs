@@ -95,3 +95,187 @@ pub fn run(args: &LocalizeBenchArgs, out: &mut dyn std::io::Write) -> anyhow::Re
     }
     Ok(())
 }
+
+/// Arguments of `solsim seu-campaign`.
+#[derive(Debug, clap::Args)]
+pub struct SeuArgs {
+    /// Onboard-localization activities to run, each with upsets drawn from its own seed.
+    #[arg(long, default_value_t = 1000)]
+    pub runs: u32,
+    /// Master seed of the upset draws.
+    #[arg(long, default_value_t = 7)]
+    pub seed: u64,
+    /// Probability that a stored input file takes a bit flip before a run.
+    #[arg(long, default_value_t = 0.05)]
+    pub p_storage: f64,
+    /// Probability that the input's in-memory copy takes a bit flip during a run.
+    #[arg(long, default_value_t = 0.10)]
+    pub p_memory: f64,
+    /// Probability that a result file takes a bit flip.
+    #[arg(long, default_value_t = 0.05)]
+    pub p_output: f64,
+    /// Probability that a run stalls.
+    #[arg(long, default_value_t = 0.02)]
+    pub p_stall: f64,
+}
+
+/// Serialise a u8 raster as bytes: `width`, `height` (u32 LE), then the samples.
+fn raster_bytes(r: &maps::Raster<u8>, valid: &[bool]) -> Vec<u8> {
+    let mut b = Vec::with_capacity(8 + 2 * r.data.len());
+    b.extend_from_slice(&(r.width as u32).to_le_bytes());
+    b.extend_from_slice(&(r.height as u32).to_le_bytes());
+    b.extend_from_slice(&r.data);
+    b.extend(valid.iter().map(|&v| u8::from(v)));
+    b
+}
+
+/// Read back what [`raster_bytes`] wrote (a corrupted header reads as a smaller or empty image).
+fn raster_from_bytes(b: &[u8], geo: maps::GeoTransform) -> (maps::Raster<u8>, Vec<bool>) {
+    let word = |i: usize| {
+        b.get(i..i + 4)
+            .map_or(0, |w| u32::from_le_bytes([w[0], w[1], w[2], w[3]]) as usize)
+    };
+    let (w, h) = (word(0), word(4));
+    let n = w.saturating_mul(h);
+    if b.len() != 8 + 2 * n {
+        return (maps::Raster::filled(0, 0, geo, 0), Vec::new());
+    }
+    let data = b[8..8 + n].to_vec();
+    let valid = b[8 + n..].iter().map(|&v| v != 0).collect();
+    (
+        maps::Raster {
+            width: w,
+            height: h,
+            geo,
+            data,
+        },
+        valid,
+    )
+}
+
+/// Run the seeded upset-injection campaign on a real localization (census on a synthetic
+/// post-drive scene) through the HBS model and print the counts.
+pub fn seu(args: &SeuArgs, out: &mut dyn std::io::Write) -> anyhow::Result<()> {
+    use localization::hbs::{HbsFile, HbsParams, seu_campaign};
+    use localization::matcher::{OrbitalMap, RoverImages, localize};
+    use localization::synthetic::{
+        OrbitalParams, RoverImagingParams, render_orbital, render_rover, truth_patch,
+    };
+    for (flag, p) in [
+        ("--p-storage", args.p_storage),
+        ("--p-memory", args.p_memory),
+        ("--p-output", args.p_output),
+        ("--p-stall", args.p_stall),
+    ] {
+        if !(0.0..=1.0).contains(&p) {
+            anyhow::bail!("{flag}: expected a probability between 0 and 1, got {p}");
+        }
+    }
+    let maps = BenchmarkMaps::generate(1);
+    let layers = maps.get(localization::benchmark_set::TerrainKind::Rocky);
+    let truth = [300.0, 300.0];
+    let patch = truth_patch(layers, truth, 80.0, 11)?;
+    let orbital = render_orbital(&patch, &OrbitalParams::default(), 12)?;
+    let rover = render_rover(&patch, truth, &RoverImagingParams::default(), 13)?;
+    let prior = [truth[0] + 6.0, truth[1] - 4.0];
+    let (map_geo, ortho_geo) = (orbital.appearance.geo, rover.ortho.geo);
+    let inputs = vec![
+        HbsFile::new(
+            "onbd_input.txt",
+            format!("prior_x_m={} prior_y_m={}\n", prior[0], prior[1]).into_bytes(),
+        ),
+        HbsFile::new("ortho.bin", raster_bytes(&rover.ortho, &rover.valid)),
+        HbsFile::new(
+            "map_tile.bin",
+            raster_bytes(
+                &orbital.appearance,
+                &vec![true; orbital.appearance.data.len()],
+            ),
+        ),
+    ];
+    let algorithm = |files: &[HbsFile]| -> Vec<u8> {
+        let (ortho, valid) = raster_from_bytes(&files[1].bytes, ortho_geo);
+        let (map, _) = raster_from_bytes(&files[2].bytes, map_geo);
+        let prior = std::str::from_utf8(&files[0].bytes).ok().and_then(|t| {
+            let v: Vec<f64> = t
+                .split_whitespace()
+                .filter_map(|kv| kv.split_once('=')?.1.parse().ok())
+                .collect();
+            (v.len() == 2).then(|| [v[0], v[1]])
+        });
+        let Some(prior) = prior else {
+            return b"error: unreadable input file".to_vec();
+        };
+        let rover = RoverImages {
+            ortho: &ortho,
+            ortho_valid: &valid,
+            dem: None,
+        };
+        match localize(
+            &OrbitalMap {
+                appearance: &map,
+                dem: None,
+            },
+            &rover,
+            prior,
+            &MatchParams::default(),
+        ) {
+            Ok(m) => format!(
+                "x_m={:.4} y_m={:.4} sigma_m={:.4} rejection={:?}\n",
+                m.position_m[0], m.position_m[1], m.sigma_m, m.rejection
+            )
+            .into_bytes(),
+            Err(e) => format!("error: {e}\n").into_bytes(),
+        }
+    };
+    let params = HbsParams {
+        p_flip_storage: args.p_storage,
+        p_flip_memory: args.p_memory,
+        p_flip_output: args.p_output,
+        p_stall: args.p_stall,
+        ..HbsParams::default()
+    };
+    let start = std::time::Instant::now();
+    // MOB_APPLY_ONBD_LOCALIZATION's validity checks: a well-formed, accepted localization.
+    let validate = |result: &[u8]| -> Result<(), String> {
+        let text = std::str::from_utf8(result).map_err(|_| "result is not text".to_string())?;
+        if text.starts_with("x_m=") && text.trim_end().ends_with("rejection=None") {
+            Ok(())
+        } else {
+            Err(format!("not an accepted localization: {}", text.trim()))
+        }
+    };
+    let c = seu_campaign(args.runs, args.seed, &params, &inputs, algorithm, validate);
+    writeln!(
+        out,
+        "HBS upset-injection campaign: {} onboard localizations (census on a synthetic post-drive scene), seed {}",
+        c.runs, args.seed
+    )?;
+    writeln!(
+        out,
+        "  upsets injected:                  {}",
+        c.upsets_injected
+    )?;
+    writeln!(
+        out,
+        "  activities with an upset:         {}",
+        c.runs_with_upsets
+    )?;
+    writeln!(
+        out,
+        "  caught (checksum, compare, timeout or validity check): {}",
+        c.caught
+    )?;
+    writeln!(out, "  harmless (result unchanged):       {}", c.harmless)?;
+    writeln!(out, "  localizations lost:               {}", c.lost)?;
+    writeln!(
+        out,
+        "  corrupted results applied:        {}",
+        c.corrupted_applied
+    )?;
+    writeln!(out, "  ({:.1} s)", start.elapsed().as_secs_f64())?;
+    if c.corrupted_applied > 0 {
+        anyhow::bail!("{} corrupted results were applied", c.corrupted_applied);
+    }
+    Ok(())
+}

@@ -59,6 +59,10 @@ enum Command {
     /// panoramas over rocky, plain and dune terrain): mean, median, p99, max, counts over 1 m and
     /// 2 m, for census, NCC and mutual information.
     LocalizeBench(cmd_localize::LocalizeBenchArgs),
+    /// Inject radiation upsets (bit flips in storage, memory and results; stalls) into seeded
+    /// onboard-localization runs on the co-processor model and count injected / caught / lost /
+    /// corrupted-and-applied (which must be zero).
+    SeuCampaign(cmd_localize::SeuArgs),
 }
 
 #[derive(Subcommand)]
@@ -248,6 +252,10 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
         }
         Command::Zones(ZonesCommand::Check(a)) => {
             cmd_zones::run(&a, stdout)?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::SeuCampaign(a) => {
+            cmd_localize::seu(&a, stdout)?;
             Ok(ExitCode::SUCCESS)
         }
         Command::LocalizeBench(a) => {

@@ -417,3 +417,29 @@ fn localize_bench_rejects_an_unknown_method() {
         .expect("runs");
     assert_bad_input(&o, &["--methods", "sift"]);
 }
+
+#[test]
+fn seu_campaign_counts_and_never_applies_a_corrupted_result() {
+    let o = solsim()
+        .args([
+            "seu-campaign",
+            "--runs",
+            "20",
+            "--p-memory",
+            "0.5",
+            "--p-output",
+            "0.2",
+        ])
+        .output()
+        .expect("runs");
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.contains("upsets injected:") && text.contains("localizations lost:"),
+        "{text}"
+    );
+    assert!(
+        text.contains("corrupted results applied:        0"),
+        "{text}"
+    );
+}

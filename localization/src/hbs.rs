@@ -330,7 +330,7 @@ pub struct SeuCounts {
     pub upsets_injected: u32,
     /// Activities with at least one upset.
     pub runs_with_upsets: u32,
-    /// Activities whose upset was caught (checksum, comparison or timeout).
+    /// Activities whose upset was caught (checksum, comparison, timeout or validity check).
     pub caught: u32,
     /// Activities with an upset that changed nothing (e.g. the flipped bit was never read) and
     /// whose result, identical to the fault-free one, was applied.
@@ -341,14 +341,16 @@ pub struct SeuCounts {
     pub corrupted_applied: u32,
 }
 
-/// Run `runs` activities with upsets injected, from `seed`, and count what happened. Every
-/// applied result is compared with the fault-free result of the same inputs.
+/// Run `runs` activities with upsets injected, from `seed`, and count what happened. `validate`
+/// is the rover's validity check on a result (as in [`run_activity`]). Every applied result is
+/// compared with the fault-free result of the same inputs.
 pub fn seu_campaign(
     runs: u32,
     seed: u64,
     params: &HbsParams,
     inputs: &[HbsFile],
     algorithm: impl Fn(&[HbsFile]) -> Vec<u8>,
+    validate: impl Fn(&[u8]) -> Result<(), String>,
 ) -> SeuCounts {
     use rand::SeedableRng;
     let golden = algorithm(inputs);
@@ -359,7 +361,7 @@ pub fn seu_campaign(
     for run in 0..runs {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         rng.set_stream(u64::from(run));
-        let log = run_activity(inputs, params, &mut rng, &algorithm, |_| Ok(()));
+        let log = run_activity(inputs, params, &mut rng, &algorithm, &validate);
         c.upsets_injected += log.upsets.len() as u32;
         let upset = !log.upsets.is_empty();
         c.runs_with_upsets += u32::from(upset);
@@ -503,12 +505,15 @@ mod tests {
             p_stall: 0.05,
             ..Default::default()
         };
-        let c = seu_campaign(2000, 42, &p, &inputs(), algorithm);
+        let c = seu_campaign(2000, 42, &p, &inputs(), algorithm, |_| Ok(()));
         assert_eq!(c.corrupted_applied, 0, "{c:?}");
         assert!(c.upsets_injected > 500, "{c:?}");
         assert_eq!(c.caught + c.harmless, c.runs_with_upsets, "{c:?}");
         assert_eq!(c.lost, c.caught, "{c:?}");
         // Same seed, same counts.
-        assert_eq!(c, seu_campaign(2000, 42, &p, &inputs(), algorithm));
+        assert_eq!(
+            c,
+            seu_campaign(2000, 42, &p, &inputs(), algorithm, |_| Ok(()))
+        );
     }
 }
