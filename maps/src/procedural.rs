@@ -26,7 +26,7 @@
 //!   Icarus 174, 2005 (small craters follow a steep power-law size-frequency distribution).
 
 mod landforms;
-mod noise;
+pub mod noise;
 
 use rayon::prelude::*;
 

@@ -1,31 +1,8 @@
 //! Hash-based noise: every value is a pure function of (seed, position), with no generator state
 //! and no call order, so rows can be rendered on any number of threads and give the same bits.
 
-/// The splitmix64 finaliser: a bijective 64-bit mix with full avalanche.
-#[inline]
-pub(super) fn mix64(mut z: u64) -> u64 {
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^ (z >> 31)
-}
-
-/// An independent seed for one use (`salt`) of the master `seed`.
-#[must_use]
-pub(super) fn sub_seed(seed: u64, salt: u64) -> u64 {
-    mix64(seed ^ mix64(salt.wrapping_add(0x9E37_79B9_7F4A_7C15)))
-}
-
-/// Hash of lattice point `(ix, iy)` under `seed`.
-#[inline]
-pub(super) fn hash2(seed: u64, ix: i64, iy: i64) -> u64 {
-    // Casting wraps negative indices to distinct u64 values, which is all a hash needs.
-    mix64(
-        seed ^ (ix as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
-            ^ (iy as u64)
-                .wrapping_mul(0xC2B2_AE3D_27D4_EB4F)
-                .rotate_left(29),
-    )
-}
+// The lattice hashes are the terrain generator's, so both crates draw from one definition.
+pub(super) use maps::procedural::noise::{hash2, mix64, sub_seed};
 
 /// The top 53 bits of `h` as a uniform value in `[0, 1)`.
 #[inline]

@@ -14,7 +14,7 @@ const MAX_OCTAVES: usize = 8;
 
 /// The splitmix64 finaliser: a bijective 64-bit mix with full avalanche.
 #[inline]
-pub(super) fn mix64(mut z: u64) -> u64 {
+pub fn mix64(mut z: u64) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
     z ^ (z >> 31)
@@ -22,13 +22,14 @@ pub(super) fn mix64(mut z: u64) -> u64 {
 
 /// An independent seed for one use (`salt`) of the master `seed`.
 #[must_use]
-pub(super) fn sub_seed(seed: u64, salt: u64) -> u64 {
+pub fn sub_seed(seed: u64, salt: u64) -> u64 {
     mix64(seed ^ mix64(salt.wrapping_add(0x9E37_79B9_7F4A_7C15)))
 }
 
 /// Hash of lattice cell `(ix, iy)` under `seed`.
 #[inline]
-fn hash2(seed: u64, ix: i64, iy: i64) -> u64 {
+#[must_use]
+pub fn hash2(seed: u64, ix: i64, iy: i64) -> u64 {
     // Casting wraps negative cells to distinct u64 values, which is all a hash needs.
     mix64(
         seed ^ (ix as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
