@@ -20,7 +20,9 @@
 //! With `SOLSIM_CENSUS_DUMP=<dir>`, the B1 census images are written as `.npy` (`uint8`:
 //! `template_codes`, `template_valid`, `map_codes`, `map_valid`) with `census_checksum.json`
 //! (sum of mismatch and valid counts over all offsets); `peers/bench_census.py` solves the same
-//! instance and checks its sums. `peers/run_peer_benchmarks.sh census` does both in one job.
+//! instance and checks its sums; it also times the whole B2 peer pipeline (numpy census
+//! transforms, 24 × cv2 `TM_CCORR`, cv2 masked `TM_SQDIFF` DEM term, argmin and sub-pixel fit) on
+//! seeded inputs of B2's sizes. `peers/run_peer_benchmarks.sh census` does both in one job.
 //!
 //! Threads: each figure runs inside a `rayon` pool of 1 or 2 threads (`install`).
 

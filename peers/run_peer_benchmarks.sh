@@ -4,7 +4,8 @@
 #
 # Usage: peers/run_peer_benchmarks.sh [SECTION...]     (default: all sections)
 # Sections: grid (B3 keep-out growth, B4 A*), campaign (the whole rapid-traverse compare),
-#           census (B1 exact census scores, B2 full localization).
+#           census (B1 exact census scores, B2 full localization),
+#           planner (B6 activity planner against OR-Tools CP-SAT).
 #
 # The Rust benches build with -C target-cpu=native into their own target dir
 # (target/bench-native), so the shared target/ is not rebuilt with other flags.
@@ -56,8 +57,25 @@ section_census() {
         --criterion "$BENCH_TARGET/criterion"
 }
 
+# --- planner: B6 time to proven optimum (20/40/80 activities) against OR-Tools CP-SAT ----------
+section_planner() {
+    local dump="$BENCH_TARGET/planner-instances"
+    echo "== planner: uptime (load on this 2-core machine) =="
+    uptime
+    echo "== planner: cargo bench --bench planner (dumps the instances to $dump) =="
+    SOLSIM_PLANNER_DUMP="$dump" RUSTFLAGS="-C target-cpu=native" CARGO_TARGET_DIR="$BENCH_TARGET" \
+        cargo bench --bench planner
+    echo "== planner: CP-SAT (1 and 2 workers, 3 solves each) on the same JSON instances =="
+    python3 peers/planner_cpsat.py solve "$dump"/n*_seed?.json --workers 1 2 --repeat 3 \
+        --time-limit 120 --out "$dump/cpsat.json"
+    echo "== planner: table (ours / CP-SAT, < 1 = faster) =="
+    python3 peers/planner_cpsat.py report --peers "$dump/cpsat.json" \
+        --criterion "$BENCH_TARGET/criterion"
+    uptime
+}
+
 sections=("$@")
-[ ${#sections[@]} -eq 0 ] && sections=(grid campaign census)
+[ ${#sections[@]} -eq 0 ] && sections=(grid campaign census planner)
 for s in "${sections[@]}"; do
     "section_$s"
 done

@@ -119,45 +119,12 @@ pub struct SeuArgs {
     pub p_stall: f64,
 }
 
-/// Serialise a u8 raster as bytes: `width`, `height` (u32 LE), then the samples.
-fn raster_bytes(r: &maps::Raster<u8>, valid: &[bool]) -> Vec<u8> {
-    let mut b = Vec::with_capacity(8 + 2 * r.data.len());
-    b.extend_from_slice(&(r.width as u32).to_le_bytes());
-    b.extend_from_slice(&(r.height as u32).to_le_bytes());
-    b.extend_from_slice(&r.data);
-    b.extend(valid.iter().map(|&v| u8::from(v)));
-    b
-}
-
-/// Read back what [`raster_bytes`] wrote (a corrupted header reads as a smaller or empty image).
-fn raster_from_bytes(b: &[u8], geo: maps::GeoTransform) -> (maps::Raster<u8>, Vec<bool>) {
-    let word = |i: usize| {
-        b.get(i..i + 4)
-            .map_or(0, |w| u32::from_le_bytes([w[0], w[1], w[2], w[3]]) as usize)
-    };
-    let (w, h) = (word(0), word(4));
-    let n = w.saturating_mul(h);
-    if b.len() != 8 + 2 * n {
-        return (maps::Raster::filled(0, 0, geo, 0), Vec::new());
-    }
-    let data = b[8..8 + n].to_vec();
-    let valid = b[8 + n..].iter().map(|&v| v != 0).collect();
-    (
-        maps::Raster {
-            width: w,
-            height: h,
-            geo,
-            data,
-        },
-        valid,
-    )
-}
-
 /// Run the seeded upset-injection campaign on a real localization (census on a synthetic
 /// post-drive scene) through the HBS model and print the counts.
 pub fn seu(args: &SeuArgs, out: &mut dyn std::io::Write) -> anyhow::Result<()> {
     use localization::hbs::{HbsFile, HbsParams, seu_campaign};
     use localization::matcher::{OrbitalMap, RoverImages, localize};
+    use localization::onboard::{decode_u8, encode_u8};
     use localization::synthetic::{
         OrbitalParams, RoverImagingParams, render_orbital, render_rover, truth_patch,
     };
@@ -184,18 +151,22 @@ pub fn seu(args: &SeuArgs, out: &mut dyn std::io::Write) -> anyhow::Result<()> {
             "onbd_input.txt",
             format!("prior_x_m={} prior_y_m={}\n", prior[0], prior[1]).into_bytes(),
         ),
-        HbsFile::new("ortho.bin", raster_bytes(&rover.ortho, &rover.valid)),
+        HbsFile::new("ortho.bin", encode_u8(&rover.ortho, &rover.valid)),
         HbsFile::new(
             "map_tile.bin",
-            raster_bytes(
+            encode_u8(
                 &orbital.appearance,
                 &vec![true; orbital.appearance.data.len()],
             ),
         ),
     ];
     let algorithm = |files: &[HbsFile]| -> Vec<u8> {
-        let (ortho, valid) = raster_from_bytes(&files[1].bytes, ortho_geo);
-        let (map, _) = raster_from_bytes(&files[2].bytes, map_geo);
+        let (Some((ortho, valid)), Some((map, _))) = (
+            decode_u8(&files[1].bytes, ortho_geo),
+            decode_u8(&files[2].bytes, map_geo),
+        ) else {
+            return b"error: unreadable image file".to_vec();
+        };
         let prior = std::str::from_utf8(&files[0].bytes).ok().and_then(|t| {
             let v: Vec<f64> = t
                 .split_whitespace()

@@ -10,7 +10,10 @@
 #![warn(missing_docs)]
 
 pub mod cmd_localize;
+pub mod cmd_localize_rasters;
 pub mod cmd_map;
+pub mod cmd_package;
+pub mod cmd_plan;
 pub mod cmd_zones;
 pub mod error;
 pub mod expect;

@@ -13,7 +13,7 @@ use clap::{Args, Parser, Subcommand};
 use sim::{CampaignOutcome, Strategy, campaign};
 use solsim::report;
 use solsim::scenario::Scenario;
-use solsim::{cmd_localize, cmd_map, cmd_zones, regress};
+use solsim::{cmd_localize, cmd_localize_rasters, cmd_map, cmd_package, cmd_zones, regress};
 
 /// Simulate multi-sol Mars rover drives: position uncertainty, grown keep-out zones, AutoNav
 /// NO_PATH faults, and how operations strategies (ground-in-the-loop, onboard global
@@ -63,6 +63,23 @@ enum Command {
     /// onboard-localization runs on the co-processor model and count injected / caught / lost /
     /// corrupted-and-applied (which must be zero).
     SeuCampaign(cmd_localize::SeuArgs),
+    /// Onboard global localization on your own rasters (orbital orthoimage and DEM, rover
+    /// orthomosaic and DEM).
+    ///
+    /// Matches the rover's orthomosaic (and DEM), centred on the rover, against the orbital
+    /// orthoimage (and DEM) around a prior position. Prints the position (E, N metres),
+    /// correction, σ, best score, peak ratio, valid fraction and verdict (ACCEPTED, or
+    /// REJECTED: reason — still exit 0); exit 2 on bad input.
+    Localize(Box<cmd_localize_rasters::LocalizeArgs>),
+    /// Plan one sol from a campaign file (paper 003): goal-set, periodic and state-based
+    /// campaigns, drives split around them, mandatory comm passes, battery and data limits.
+    ///
+    /// Prints the timeline (LMST start/end, activity and drive segment, campaign, metres
+    /// driven, energy and data after each step), the utility per campaign and per tier, the
+    /// best bound and gap, the proof status (PROVEN OPTIMAL or FEASIBLE gap ...) and the plan
+    /// validator's verdict. Deterministic under the node budget (default 100000 nodes); with
+    /// --time-budget-ms the output may vary between runs. Exit 2 on a malformed file.
+    Plan(solsim::cmd_plan::PlanArgs),
 }
 
 #[derive(Subcommand)]
@@ -76,6 +93,10 @@ enum ZonesCommand {
 enum MapCommand {
     /// Generate a procedural map (appearance, DEM, terrain class GeoTIFFs) from a recipe TOML.
     Generate(cmd_map::GenerateArgs),
+    /// Onboard map package of a scenario's route: the 25 cm orthoimage and 1 m DEM (16-bit cm)
+    /// rendered along the route, masked to a corridor, as PNG tiles plus manifest.json; prints
+    /// the corridor area, pixel counts, bytes per file, total MB and the time taken.
+    Package(cmd_package::PackageArgs),
 }
 
 #[derive(Args)]
@@ -258,12 +279,24 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
             cmd_localize::seu(&a, stdout)?;
             Ok(ExitCode::SUCCESS)
         }
+        Command::Localize(a) => {
+            cmd_localize_rasters::run(&a, stdout, &mut std::io::stderr())?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Plan(a) => {
+            solsim::cmd_plan::run(&a, stdout)?;
+            Ok(ExitCode::SUCCESS)
+        }
         Command::LocalizeBench(a) => {
             cmd_localize::run(&a, stdout)?;
             Ok(ExitCode::SUCCESS)
         }
         Command::Map(MapCommand::Generate(a)) => {
             cmd_map::generate(&a, stdout)?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Map(MapCommand::Package(a)) => {
+            cmd_package::run(&a, stdout)?;
             Ok(ExitCode::SUCCESS)
         }
     }

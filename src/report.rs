@@ -66,7 +66,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
 #[must_use]
 pub fn sols_csv(outcome: &CampaignOutcome) -> String {
     let mut s = String::from(
-        "strategy,sol,plan_uplink_sol,drove,skip_reason,distance_m,d_vo_m,d_novo_m,drive_time_s,start_uncertainty_m,end_uncertainty_m,fault,fault_after_m,fault_uncertainty_m,passage_clearance_m,ground_localized,onboard_localization,end_x_m,end_y_m,true_x_m,true_y_m,truth_error_m,truth_inside_disc,reached_goal\n",
+        "strategy,sol,plan_uplink_sol,drove,skip_reason,distance_m,d_vo_m,d_novo_m,drive_time_s,start_uncertainty_m,end_uncertainty_m,fault,fault_after_m,fault_uncertainty_m,passage_clearance_m,ground_localized,onboard_localization,onboard_localizer,onboard_start_lmst,onboard_duration_s,onboard_error_m,end_x_m,end_y_m,true_x_m,true_y_m,truth_error_m,truth_inside_disc,reached_goal\n",
     );
     for r in &outcome.sols {
         let onboard = match &r.onboard_localization {
@@ -74,9 +74,19 @@ pub fn sols_csv(outcome: &CampaignOutcome) -> String {
             Some(l) if l.applied => "applied",
             Some(_) => "rejected",
         };
+        let ob = r.onboard_localization.as_ref();
+        let onboard_detail = format!(
+            "{},{},{},{}",
+            ob.map_or("", |l| l.localizer),
+            ob.and_then(|l| l.start_lmst.as_deref()).unwrap_or(""),
+            ob.and_then(|l| l.duration_s)
+                .map_or(String::new(), |d| format!("{d:.0}")),
+            ob.and_then(|l| l.error_m)
+                .map_or(String::new(), |e| format!("{e:.3}")),
+        );
         let _ = writeln!(
             s,
-            "{},{},{},{},{},{:.3},{:.3},{:.3},{:.0},{:.3},{:.3},{},{},{},{},{},{},{:.3},{:.3},{:.3},{:.3},{:.3},{},{}",
+            "{},{},{},{},{},{:.3},{:.3},{:.3},{:.0},{:.3},{:.3},{},{},{},{},{},{},{},{:.3},{:.3},{:.3},{:.3},{:.3},{},{}",
             outcome.strategy,
             r.sol,
             r.plan_uplink_sol,
@@ -99,6 +109,7 @@ pub fn sols_csv(outcome: &CampaignOutcome) -> String {
                 .map_or(String::new(), |c| format!("{c:.3}")),
             r.ground_localization.is_some(),
             onboard,
+            onboard_detail,
             r.end_position_m[0],
             r.end_position_m[1],
             r.end_true_position_m[0],
@@ -228,11 +239,19 @@ pub fn sol_table(outcome: &CampaignOutcome) -> String {
             note = format!("ground-localized; {note}");
         }
         if let Some(l) = &r.onboard_localization {
+            let when = match (&l.start_lmst, l.duration_s) {
+                (Some(start), Some(d)) => format!(" {start} +{:.0} min", d / 60.0),
+                _ => String::new(),
+            };
             note.push_str(&if l.applied {
-                format!("onboard loc → r={:.2} m", l.uncertainty_after_m)
+                format!(
+                    "onboard loc ({}{when}) → r={:.2} m",
+                    l.localizer, l.uncertainty_after_m
+                )
             } else {
                 format!(
-                    "onboard loc rejected ({})",
+                    "onboard loc ({}{when}) lost: {}",
+                    l.localizer,
                     l.reason.as_deref().unwrap_or("")
                 )
             });

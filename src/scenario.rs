@@ -14,13 +14,15 @@ use crate::error::ScenarioError;
 mod raw;
 
 use crate::expect::Expectation;
+use localization::matcher::Method;
+use localization::onboard::OnboardSettings;
 use maps::{GeoTransform, MapLayers, ZoneSet};
 use raw::RawPerTerrain;
 pub use raw::RawScenario;
 use sim::autonav::{PerTerrain, RoverParams};
 use sim::calendar::{Calendar, HistoricSol, Planning, SolEntry};
 use sim::campaign::Campaign;
-use sim::localizer::StatisticalLocalizer;
+use sim::localizer::{ImageryLocalizer, OnboardLocalizer, StatisticalLocalizer};
 use sim::planning_grid::{GridParams, PlanningGrid};
 use sim::time::SolSeconds;
 use sim::uncertainty::UncertaintyModel;
@@ -138,27 +140,35 @@ fn per_terrain(
     })
 }
 
+/// Read a TOML file into its raw (`deny_unknown_fields`) structs, with the SHA-256 of its
+/// bytes (hex) for provenance. Errors name the file, and the line and field for TOML errors.
+pub(crate) fn read_toml<T: serde::de::DeserializeOwned>(
+    path: &Path,
+) -> Result<(T, String), ScenarioError> {
+    let bytes = std::fs::read(path).map_err(|source| ScenarioError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let text = String::from_utf8(bytes.clone()).map_err(|e| {
+        ScenarioError::field(
+            path,
+            "(file)",
+            "UTF-8 text",
+            format!("invalid byte at offset {}", e.utf8_error().valid_up_to()),
+        )
+    })?;
+    let raw: T = toml::from_str(&text).map_err(|e| ScenarioError::from_toml(path, &text, &e))?;
+    let sha256 = Sha256::digest(&bytes)
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect();
+    Ok((raw, sha256))
+}
+
 impl Scenario {
     /// Read, validate and resolve a scenario file (maps and zones included).
     pub fn load(path: &Path) -> Result<Self, ScenarioError> {
-        let bytes = std::fs::read(path).map_err(|source| ScenarioError::Io {
-            path: path.to_path_buf(),
-            source,
-        })?;
-        let text = String::from_utf8(bytes.clone()).map_err(|e| {
-            ScenarioError::field(
-                path,
-                "(file)",
-                "UTF-8 text",
-                format!("invalid byte at offset {}", e.utf8_error().valid_up_to()),
-            )
-        })?;
-        let raw: RawScenario =
-            toml::from_str(&text).map_err(|e| ScenarioError::from_toml(path, &text, &e))?;
-        let sha256 = Sha256::digest(&bytes)
-            .iter()
-            .map(|b| format!("{b:02x}"))
-            .collect();
+        let (raw, sha256) = read_toml::<RawScenario>(path)?;
         Self::resolve(path, raw, sha256)
     }
 
@@ -243,9 +253,50 @@ impl Scenario {
                     c.non_negative("uncertainty.initial_margin_m", v, "metres")
                 })?,
         };
-        let ld = StatisticalLocalizer::default();
         let l = raw.onboard_localization;
-        let localizer = StatisticalLocalizer {
+        let localizer_name = l.localizer.as_deref().unwrap_or("statistical");
+        let method = match localizer_name {
+            "statistical" => None,
+            name => Some(Method::from_name(name).ok_or_else(|| {
+                ScenarioError::field(
+                    path,
+                    "onboard_localization.localizer",
+                    "\"statistical\", \"census\", \"ncc\" or \"mi\"",
+                    format!("{name:?}"),
+                )
+            })?),
+        };
+        if method.is_some() {
+            for (field, given) in [
+                ("mean_error_m", l.mean_error_m.is_some()),
+                ("p99_error_m", l.p99_error_m.is_some()),
+                ("failure_rate", l.failure_rate.is_some()),
+                ("reported_sigma_m", l.reported_sigma_m.is_some()),
+            ] {
+                if given {
+                    return Err(ScenarioError::field(
+                        path,
+                        format!("onboard_localization.{field}"),
+                        "no value: it sets the statistical localizer only",
+                        format!("a value with localizer = {localizer_name:?}"),
+                    ));
+                }
+            }
+        } else if l.hbs_slowdown.is_some() {
+            return Err(ScenarioError::field(
+                path,
+                "onboard_localization.hbs_slowdown",
+                "no value: it sets the image-matching localizers (census, ncc, mi) only",
+                "a value with localizer = \"statistical\"",
+            ));
+        }
+        let hbs_slowdown = l
+            .hbs_slowdown
+            .map_or(Ok(OnboardSettings::default().hbs_slowdown), |v| {
+                c.positive("onboard_localization.hbs_slowdown", v, "seconds per second")
+            })?;
+        let ld = StatisticalLocalizer::default();
+        let statistical = StatisticalLocalizer {
             mean_error_m: l.mean_error_m.map_or(Ok(ld.mean_error_m), |v| {
                 c.positive("onboard_localization.mean_error_m", v, "metres")
             })?,
@@ -259,15 +310,15 @@ impl Scenario {
                 c.non_negative("onboard_localization.reported_sigma_m", v, "metres")
             })?,
         };
-        if localizer.p99_error_m <= localizer.mean_error_m * 1.05 {
+        if statistical.p99_error_m <= statistical.mean_error_m * 1.05 {
             return Err(ScenarioError::field(
                 path,
                 "onboard_localization.p99_error_m",
                 format!(
                     "more than 1.05 × mean_error_m ({} m)",
-                    localizer.mean_error_m
+                    statistical.mean_error_m
                 ),
-                localizer.p99_error_m,
+                statistical.p99_error_m,
             ));
         }
         let operator_margin_m = l
@@ -505,6 +556,17 @@ impl Scenario {
             }
         }
         let grid = PlanningGrid::build(&zones, &layers, &grid_params);
+        let post_drive_imaging_s = ops
+            .post_drive_imaging_s
+            .unwrap_or(DEFAULT_POST_DRIVE_IMAGING_S);
+        let localizer = match method {
+            None => OnboardLocalizer::Statistical(statistical),
+            Some(method) => {
+                let mut imagery = ImageryLocalizer::new(std::sync::Arc::new(layers), method);
+                imagery.settings.hbs_slowdown = hbs_slowdown;
+                OnboardLocalizer::Imagery(Box::new(imagery))
+            }
+        };
 
         let expectations = raw
             .expect
@@ -527,11 +589,13 @@ impl Scenario {
                 model,
                 localizer,
                 operator_margin_m,
-                post_drive_imaging_s: ops
-                    .post_drive_imaging_s
-                    .unwrap_or(DEFAULT_POST_DRIVE_IMAGING_S),
+                post_drive_imaging_s,
                 max_extension_sols: ops.max_extension_sols.unwrap_or(DEFAULT_MAX_EXTENSION_SOLS),
                 grid,
+                sol_plan: sim::sol_plan::SolPlanParams {
+                    imaging_s: i64::from(post_drive_imaging_s),
+                    ..sim::sol_plan::SolPlanParams::default()
+                },
             },
             expectations,
             notes,

@@ -2,23 +2,14 @@
 //! on one thread and on two), `regress` exit codes and JUnit output, and bad input — every bad
 //! file gets exactly one clear line naming the file and the field, and exit code 2, never a panic.
 
+mod common;
+
+use common::{assert_bad_input, root, solsim, stderr};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn solsim() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_solsim"))
-}
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
+use std::process::Output;
 
 fn scenario(name: &str) -> PathBuf {
     root().join("scenarios").join(name)
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
 #[test]
@@ -216,21 +207,6 @@ fn validate_modified(
     (o, path, dir)
 }
 
-fn assert_bad_input(o: &Output, must_contain: &[&str]) {
-    let err = stderr(o);
-    assert_eq!(o.status.code(), Some(2), "exit code; stderr: {err}");
-    assert!(!err.contains("panicked"), "panic: {err}");
-    assert_eq!(
-        err.trim_end().lines().count(),
-        1,
-        "one line expected:\n{err}"
-    );
-    assert!(err.starts_with("error: "), "{err}");
-    for s in must_contain {
-        assert!(err.contains(s), "stderr lacks {s:?}:\n{err}");
-    }
-}
-
 #[test]
 fn missing_scenario_file() {
     let o = solsim()
@@ -288,6 +264,86 @@ fn nan_is_rejected() {
         &o,
         &[path.to_str().expect("utf8"), "uncertainty.k_vo", "NaN"],
     );
+}
+
+#[test]
+fn unknown_localizer_is_rejected() {
+    let (o, path, _d) = validate_modified("sol383-386.toml", |t| {
+        t.replace("localizer = \"census\"", "localizer = \"sextant\"")
+    });
+    assert_bad_input(
+        &o,
+        &[
+            path.to_str().expect("utf8"),
+            "onboard_localization.localizer",
+            "\"census\"",
+            "sextant",
+        ],
+    );
+}
+
+#[test]
+fn statistical_settings_with_an_image_localizer_are_rejected() {
+    let (o, path, _d) = validate_modified("sol383-386.toml", |t| {
+        t.replace(
+            "localizer = \"census\"",
+            "localizer = \"census\"\nmean_error_m = 0.5",
+        )
+    });
+    assert_bad_input(
+        &o,
+        &[
+            path.to_str().expect("utf8"),
+            "onboard_localization.mean_error_m",
+            "statistical localizer only",
+        ],
+    );
+}
+
+#[test]
+fn census_onboard_localization_is_logged_with_hbs_steps_and_timeline() {
+    let o = solsim()
+        .args(["run", "--strategy", "onboard", "--json", "--no-files"])
+        .arg(scenario("sol383-386.toml"))
+        .output()
+        .expect("runs");
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("json");
+    let sols = v["sols"].as_array().expect("sols");
+    let mut applied = 0;
+    for s in sols.iter().filter(|s| s["drove"] == true) {
+        let l = &s["onboard_localization"];
+        assert_eq!(l["localizer"], "census", "{l}");
+        let steps: Vec<&str> = l["steps"]
+            .as_array()
+            .expect("steps")
+            .iter()
+            .map(|e| e["step"].as_str().expect("step"))
+            .collect();
+        assert_eq!(
+            steps.first(),
+            Some(&"MOB_WRITE_ONBD_INPUT_FILE"),
+            "{steps:?}"
+        );
+        assert!(
+            steps.contains(&"RUN_1") && steps.contains(&"REBOOT"),
+            "{steps:?}"
+        );
+        // The activity starts when the drive ends and lasts transfer + 2 runs + reboot.
+        let start = l["start_lmst"].as_str().expect("start");
+        assert!(("11:30".."14:16").contains(&start), "{start}");
+        let d = l["duration_s"].as_f64().expect("duration");
+        assert!((120.0 + 2.0 * 32.0..3600.0).contains(&d), "{d}");
+        if l["applied"] == true {
+            applied += 1;
+            assert_eq!(steps.last(), Some(&"MOB_APPLY_ONBD_LOCALIZATION"));
+            assert!(l["error_m"].as_f64().expect("error") < 2.0, "{l}");
+            assert!(l["uncertainty_after_m"].as_f64().expect("r") < 3.0, "{l}");
+        } else {
+            assert!(l["reason"].is_string(), "{l}");
+        }
+    }
+    assert!(applied >= 2, "{applied} applied");
 }
 
 #[test]

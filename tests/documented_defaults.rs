@@ -1,8 +1,9 @@
 //! Every default the README states is the default the code uses (rapier's docs drifted from its
 //! `Default`; this test keeps ours honest). Each pair is (text in README.md, value in code).
 
+use localization::onboard::{MEASURED_FLIGHT_SIZE_RUN_S, OnboardSettings};
 use sim::autonav::RoverParams;
-use sim::localizer::StatisticalLocalizer;
+use sim::localizer::{OnboardLocalizer, StatisticalLocalizer};
 use sim::planning_grid::GridParams;
 use sim::uncertainty::UncertaintyModel;
 
@@ -83,6 +84,22 @@ fn readme_defaults_match_the_code() {
             "README says {text:?} but the code default is {actual}"
         );
     }
+    // The image localizers' co-processor timing.
+    let onboard = OnboardSettings::default();
+    for text in [
+        format!(
+            "`hbs_slowdown` (image localizers only; default {:.1})",
+            onboard.hbs_slowdown
+        ),
+        format!("development machine, {MEASURED_FLIGHT_SIZE_RUN_S} s"),
+        "(default `\"statistical\"`)".to_string(),
+        format!(
+            "({} m minimum, {} m maximum)",
+            onboard.min_search_radius_m, onboard.max_search_radius_m
+        ),
+    ] {
+        assert!(readme.contains(&text), "README no longer states {text:?}");
+    }
     // Scenario-level defaults live in src/scenario.rs; loading a scenario without them uses them.
     for text in [
         "`operator_margin_m` (1.0)",
@@ -102,6 +119,9 @@ fn scenario_level_defaults_apply_when_fields_are_omitted() {
     assert_eq!(s.campaign.operator_margin_m, 1.0);
     assert_eq!(s.campaign.post_drive_imaging_s, 1800);
     assert_eq!(s.campaign.max_extension_sols, 3);
-    assert_eq!(s.campaign.localizer, StatisticalLocalizer::default());
+    match &s.campaign.localizer {
+        OnboardLocalizer::Statistical(l) => assert_eq!(*l, StatisticalLocalizer::default()),
+        OnboardLocalizer::Imagery(_) => panic!("the default localizer is the statistical one"),
+    }
     assert_eq!(s.campaign.model, UncertaintyModel::default());
 }

@@ -43,7 +43,7 @@ pub const MAX_PRIOR_OFFSET_M: f64 = 20.0;
 const POSITION_MARGIN_M: f64 = 140.0;
 /// Extra truth patch beyond the search window, metres (shadows cast from outside the patch
 /// are missing, so keep them out of the window).
-const PATCH_MARGIN_M: f64 = 4.0;
+pub(crate) const PATCH_MARGIN_M: f64 = 4.0;
 
 /// The terrain type of a benchmark case (paper 000 Fig. 8: rocky, plains, dunes).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize)]
@@ -52,7 +52,9 @@ pub enum TerrainKind {
     Rocky,
     /// Mostly soil: weaker texture, few rocks.
     Plain,
-    /// Large dune fields: sand, repetitive ripples and dune crests, almost no rocks.
+    /// Large bedform (dune / megaripple) fields: loose sand with wavy, forking ripples on the
+    /// bedforms, coarse lag, scattered rocks and bedrock in the troughs between them; the
+    /// hardest class (least texture, repetitive, sand that moves between epochs).
     Dunes,
 }
 
@@ -92,8 +94,39 @@ pub fn terrain_params(kind: TerrainKind, seed: u64) -> TerrainParams {
             ridge_count: 0,
             ..base
         },
+        // Bedform fields like those Perseverance drove past (Séítah; the Kerrlaguna and
+        // Honeyguide megaripple fields): large bedforms about 1–2 m tall (NASA Perseverance
+        // mission updates, 2025: megaripples ~1 m, Hazyview up to ~2 m), here a main field of
+        // 20 m spacing and 2 m crest to trough whose crests run 30° east of north, crossed in
+        // the north-west by a smaller set (12 m, 0.8 m, crests at 75°) and in the south-east by
+        // another (15 m, 1 m, crests at 345°), so orientation and spacing vary over the map and
+        // crests interfere where fields overlap. The spacings, heights and azimuths are a
+        // judgement. The troughs between them are armoured lag and bedrock, not sand (see
+        // `synthetic::truth`); the decimetre ripples on the loose sand come from the truth patch.
         TerrainKind::Dunes => TerrainParams {
-            dune_fields: vec![DuneField::new([half, half], 1.5 * half, 30.0)],
+            dune_fields: vec![
+                DuneField {
+                    center_m: [half, half],
+                    radius_m: 1.5 * half,
+                    wavelength_m: 20.0,
+                    amplitude_m: 1.0,
+                    crest_azimuth_deg: 30.0,
+                },
+                DuneField {
+                    center_m: [0.3 * size as f64, 0.7 * size as f64],
+                    radius_m: 0.45 * size as f64,
+                    wavelength_m: 12.0,
+                    amplitude_m: 0.4,
+                    crest_azimuth_deg: 75.0,
+                },
+                DuneField {
+                    center_m: [0.72 * size as f64, 0.3 * size as f64],
+                    radius_m: 0.4 * size as f64,
+                    wavelength_m: 15.0,
+                    amplitude_m: 0.5,
+                    crest_azimuth_deg: 345.0,
+                },
+            ],
             sand_fraction: 0.6,
             bedrock_fraction: 0.05,
             crater_density_per_km2: 0.5,

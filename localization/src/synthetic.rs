@@ -6,7 +6,8 @@
 //!
 //! 1. [`truth_patch`] — a 0.25 m [`TruthPatch`] of heights and albedos around a map point: the
 //!    map DEM, fine fBm detail, and rocks whose density follows the terrain class (bedrock
-//!    rocky, soil some, sand almost none); albedo by class with seeded texture.
+//!    rocky, soil some, loose sand almost none but the coarse lag of dune troughs some); three
+//!    wavy, forking ripple trains on sand; albedo by class with seeded texture.
 //! 2. [`render_orbital`] — the HiRISE stand-in ([`OrbitalProducts`]): Lambertian shading under
 //!    a mid-afternoon sun with cast shadows, a Gaussian PSF, noise and a gamma, quantised to a
 //!    25 cm u8 image; and a 1 m DEM, the block mean of the truth.

@@ -189,7 +189,9 @@ fn golden_digest_of_a_hand_made_scene() {
 }
 
 /// MD5 of the truth patch, orbital products and rover observation of the golden scene.
-const GOLDEN_DIGEST: &str = "8afcc2e5ccead71cbf8634ebfbed2ed6";
+/// Changed 2026-11-25 for the sand path only (the hand map's eastern sand): wavy, multi-train
+/// ripples and interdune lag / bedrock on the sand class (`synthetic::truth`).
+const GOLDEN_DIGEST: &str = "cff694f42aace0d59a7a91b865ac049c";
 
 #[test]
 fn valid_fraction_is_plausible_and_grows_with_the_wedge_count() {
@@ -557,12 +559,13 @@ fn orbital_epoch_changes_alter_the_image_and_switch_off() {
         let differing = img.iter().zip(&base).filter(|(a, b)| a != b).count();
         assert!(differing > base.len() / 50, "{changed:?}: {differing}");
     }
-    // A full ripple wavelength of migration is no migration.
+    // The ripples are no longer one periodic train (several trains of different spacing,
+    // warped crests): a shift of the mean wavelength (3 m) is not "no migration" any more.
     let full = OrbitalParams {
         ripple_migration_m: 3.0,
         ..none
     };
     let img = render_orbital(&patch, &full, 5).unwrap().appearance.data;
     let differing = img.iter().zip(&base).filter(|(a, b)| a != b).count();
-    assert!(differing < base.len() / 100, "{differing}");
+    assert!(differing > base.len() / 50, "{differing}");
 }

@@ -12,13 +12,15 @@ use rand_chacha::ChaCha8Rng;
 use crate::astar::AStar;
 use crate::autonav::{DriveContext, DriveLimits, RoverParams, RoverState, VoSource, drive_sol};
 use crate::calendar::{Calendar, Planning};
-use crate::localizer::{LocalizationResult, StatisticalLocalizer};
+use crate::localizer::{ImageryLocalizer, LocalizationResult, OnboardLocalizer};
 use crate::outcome::{
-    CampaignOutcome, FaultKind, LegClearance, LocalizationEvent, SolRecord, Totals,
+    ActivityStep, CampaignOutcome, FaultKind, LegClearance, LocalizationEvent, SolRecord, Totals,
 };
 use crate::planning_grid::PlanningGrid;
 use crate::pose::estimate_error_m;
+use crate::sol_plan::{ChainDurations, PlannedSol, SolPlan, SolPlanParams, SolPlanRequest};
 use crate::strategy::Strategy;
+use crate::time::SolSeconds;
 use crate::uncertainty::UncertaintyModel;
 use crate::widest_path::widest_path;
 
@@ -37,8 +39,8 @@ pub struct Campaign {
     pub rover: RoverParams,
     /// Uncertainty growth.
     pub model: UncertaintyModel,
-    /// Onboard localizer (statistical model).
-    pub localizer: StatisticalLocalizer,
+    /// Onboard localizer: the statistical model or image matching through the co-processor.
+    pub localizer: OnboardLocalizer,
     /// Operator margin added to the localizer's σ after an onboard localization, metres.
     pub operator_margin_m: f64,
     /// Post-drive imaging before a downlink pass, seconds (a ground-planned drive whose panorama
@@ -49,6 +51,132 @@ pub struct Campaign {
     pub max_extension_sols: u32,
     /// The planning grid.
     pub grid: PlanningGrid,
+    /// Each drive sol's activity plan settings.
+    pub sol_plan: SolPlanParams,
+}
+
+/// Planned durations of the onboard localization chain: the co-processor model's settings,
+/// with the transfer of a flight-size input set (as measured by `localization::onboard`).
+fn chain_durations(localizer: &OnboardLocalizer) -> ChainDurations {
+    let hbs = match localizer {
+        OnboardLocalizer::Imagery(i) => i.settings.hbs,
+        OnboardLocalizer::Statistical(_) => localization::hbs::HbsParams::default(),
+    };
+    let run_s = match localizer {
+        OnboardLocalizer::Imagery(i) => {
+            i.settings.hbs_slowdown * localization::onboard::MEASURED_FLIGHT_SIZE_RUN_S
+        }
+        OnboardLocalizer::Statistical(_) => hbs.run_s,
+    };
+    ChainDurations {
+        transfer_s: (localization::onboard::FLIGHT_SIZE_INPUT_BYTES as f64 / hbs.link_bytes_per_s)
+            .ceil() as i64,
+        run_s: run_s.ceil() as i64,
+        reboot_s: hbs.reboot_s.ceil() as i64,
+    }
+}
+
+/// Apply a statistical-model localization result to `state`.
+fn statistical_localization(
+    result: LocalizationResult,
+    c: &Campaign,
+    state: &mut RoverState,
+    start: SolSeconds,
+) -> LocalizationEvent {
+    let mut event = LocalizationEvent {
+        kind: "onboard",
+        localizer: "statistical",
+        applied: false,
+        reason: None,
+        error_m: None,
+        matched_error_m: None,
+        sigma_m: None,
+        search_radius_m: None,
+        uncertainty_after_m: 0.0,
+        start_lmst: Some(start.lmst()),
+        duration_s: None,
+        steps: Vec::new(),
+    };
+    match result {
+        LocalizationResult::Accepted { error_m, sigma_m } => {
+            state.estimate.position_m =
+                state.truth.position_m + nalgebra::Vector2::new(error_m[0], error_m[1]);
+            state
+                .uncertainty
+                .reset_onboard(sigma_m, c.operator_margin_m);
+            state.clear_path();
+            event.applied = true;
+            event.error_m = Some(error_m[0].hypot(error_m[1]));
+            event.sigma_m = Some(sigma_m);
+        }
+        LocalizationResult::Rejected { reason } => event.reason = Some(reason.into()),
+    }
+    event.uncertainty_after_m = state.uncertainty.radius_m(&c.model);
+    event
+}
+
+/// Render the post-drive imagery at the true position, match it from the estimate through the
+/// co-processor model, and apply the result to `state` if it passed every check.
+fn imagery_localization(
+    loc: &ImageryLocalizer,
+    c: &Campaign,
+    state: &mut RoverState,
+    start: SolSeconds,
+    sol_seed: u64,
+) -> LocalizationEvent {
+    use localization::onboard::{OnboardRequest, run_onboard};
+    let truth = state.truth.position_m;
+    let estimate = state.estimate.position_m;
+    let request = OnboardRequest {
+        truth_m: [truth.x, truth.y],
+        prior_m: [estimate.x, estimate.y],
+        uncertainty_m: state.uncertainty.radius_m(&c.model),
+        // One world and one orbital map per scenario; the imaging and upsets change each sol.
+        truth_seed: maps::procedural::noise::sub_seed(c.seed, 0x7275_7468),
+        orbital_seed: maps::procedural::noise::sub_seed(c.seed, 0x6f72_6269),
+        sol_seed,
+    };
+    let run = run_onboard(&loc.layers, &request, &loc.settings);
+    let at = |t_s: f64| SolSeconds(start.0 + t_s.round() as u32).lmst();
+    let mut event = LocalizationEvent {
+        kind: "onboard",
+        localizer: loc.settings.matcher.method.name(),
+        applied: false,
+        reason: run.lost_reason.clone(),
+        error_m: None,
+        matched_error_m: run
+            .matched
+            .as_ref()
+            .map(|m| (m.position_m[0] - truth.x).hypot(m.position_m[1] - truth.y)),
+        sigma_m: None,
+        search_radius_m: Some(run.search_radius_m),
+        uncertainty_after_m: 0.0,
+        start_lmst: Some(start.lmst()),
+        duration_s: Some(run.log.duration_s),
+        steps: run
+            .log
+            .events
+            .iter()
+            .map(|e| ActivityStep {
+                lmst: Some(at(e.t_s)),
+                t_s: e.t_s,
+                step: e.step,
+                detail: e.detail.clone(),
+            })
+            .collect(),
+    };
+    if let Some(fix) = run.applied {
+        state.estimate.position_m = nalgebra::Vector2::new(fix.position_m[0], fix.position_m[1]);
+        state
+            .uncertainty
+            .reset_onboard(fix.sigma_m, c.operator_margin_m);
+        state.clear_path();
+        event.applied = true;
+        event.error_m = Some((fix.position_m[0] - truth.x).hypot(fix.position_m[1] - truth.y));
+        event.sigma_m = Some(fix.sigma_m);
+    }
+    event.uncertainty_after_m = state.uncertainty.radius_m(&c.model);
+    event
 }
 
 /// Per-leg passage clearance of the route (independent of strategy).
@@ -142,12 +270,25 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
                 state.clear_path();
                 moved_since_ground_fix = false;
                 sols_since_localization = 0;
+                let p = state.estimate.position_m;
                 ground_event = Some(LocalizationEvent {
                     kind: "ground",
+                    localizer: "ground",
                     applied: true,
                     reason: None,
                     error_m: Some(0.0),
+                    matched_error_m: None,
+                    sigma_m: None,
+                    search_radius_m: None,
                     uncertainty_after_m: state.uncertainty.radius_m(&c.model),
+                    start_lmst: None,
+                    duration_s: None,
+                    steps: vec![ActivityStep {
+                        lmst: None,
+                        t_s: 0.0,
+                        step: "MOB_GROUND_LOCALIZED_HERE",
+                        detail: format!("x={:.3} y={:.3}", p.x, p.y),
+                    }],
                 });
             }
             let decided = plan_drives(cal, strategy, planning, ground_knows, idx, next_uplink);
@@ -196,6 +337,7 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
             truth_inside_disc: true,
             reached_goal: false,
             plans: 0,
+            activity_plan: None,
             path_m: Vec::new(),
         };
 
@@ -231,7 +373,24 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
                 ),
                 _ => (window, VoSource::Terrain),
             };
+            let planned = PlannedSol::new(
+                &c.sol_plan,
+                &SolPlanRequest {
+                    drive_start: cal.drive_start,
+                    drive_end: SolSeconds(end.max(cal.drive_start.0)),
+                    drive_rate_m_per_h: c.rover.drive_rate_m_per_h,
+                    downlink: entry.downlink_lmst,
+                    chain: strategy
+                        .onboard_localization()
+                        .then(|| chain_durations(&c.localizer)),
+                },
+            );
             let result = drive_sol(&ctx, &mut state, limits, vo, &mut rng, &mut astar);
+            let drive_end_s = i64::from(cal.drive_start.0) + result.drive_time_s.round() as i64;
+            record.activity_plan = Some(match planned {
+                Ok(p) => p.finish(&c.sol_plan, drive_end_s),
+                Err(e) => SolPlan::not_planned(&e),
+            });
             record.distance_m = result.distance_m;
             record.d_vo_m = result.d_vo_m;
             record.d_novo_m = result.d_novo_m;
@@ -261,32 +420,21 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
         record.truth_inside_disc = record.truth_error_m <= record.end_uncertainty_m + 1e-9;
 
         if record.drove && strategy.onboard_localization() {
-            // MOB_WRITE_ONBD_INPUT_FILE → HBS run, reboot, run, compare → MOB_APPLY_ONBD_LOCALIZATION
-            let event = match c.localizer.localize(&mut rng) {
-                LocalizationResult::Accepted { error_m, sigma_m } => {
-                    state.estimate.position_m =
-                        state.truth.position_m + nalgebra::Vector2::new(error_m[0], error_m[1]);
-                    state
-                        .uncertainty
-                        .reset_onboard(sigma_m, c.operator_margin_m);
-                    state.clear_path();
-                    sols_since_localization = 0;
-                    LocalizationEvent {
-                        kind: "onboard",
-                        applied: true,
-                        reason: None,
-                        error_m: Some(error_m[0].hypot(error_m[1])),
-                        uncertainty_after_m: state.uncertainty.radius_m(&c.model),
-                    }
+            // After the drive (and its post-drive imaging): MOB_WRITE_ONBD_INPUT_FILE → HBS run,
+            // reboot, run, compare → MOB_APPLY_ONBD_LOCALIZATION.
+            let start = SolSeconds(cal.drive_start.0 + record.drive_time_s.round() as u32);
+            let event = match &c.localizer {
+                OnboardLocalizer::Statistical(model) => {
+                    statistical_localization(model.localize(&mut rng), c, &mut state, start)
                 }
-                LocalizationResult::Rejected { reason } => LocalizationEvent {
-                    kind: "onboard",
-                    applied: false,
-                    reason: Some(reason.into()),
-                    error_m: None,
-                    uncertainty_after_m: state.uncertainty.radius_m(&c.model),
-                },
+                OnboardLocalizer::Imagery(loc) => {
+                    let sol_seed = rand::RngExt::random::<u64>(&mut rng);
+                    imagery_localization(loc, c, &mut state, start, sol_seed)
+                }
             };
+            if event.applied {
+                sols_since_localization = 0;
+            }
             record.onboard_localization = Some(event);
         }
         record.end_position_m = [state.estimate.position_m.x, state.estimate.position_m.y];

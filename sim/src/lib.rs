@@ -13,6 +13,8 @@
 //! - [`autonav`]: one sol's drive: plan, step, VO, slip, faults.
 //! - [`localizer`]: the statistical onboard localizer (0.36 m mean / 0.93 m p99, paper 000 §4).
 //! - [`calendar`], [`strategy`]: operations calendar, data availability and the four strategies.
+//! - [`sol_plan`]: each drive sol's activity plan (heating, drive, imaging, passes, the onboard
+//!   localization chain) from the `planner` crate, repaired after the drive and validated.
 //! - [`campaign`]: the multi-sol runner; [`outcome`]: what it reports.
 //!
 //! ```
@@ -37,6 +39,7 @@ pub mod localizer;
 pub mod outcome;
 pub mod planning_grid;
 pub mod pose;
+pub mod sol_plan;
 pub mod strategy;
 pub mod time;
 pub mod uncertainty;

@@ -1,15 +1,29 @@
 //! Onboard global localization, as the simulator sees it: a result (an error relative to the
 //! truth and the localizer's reported σ) or a rejection with a reason.
 //!
-//! Until the census matcher lands this is a **statistical model** of the published flight
-//! accuracy (paper 000 §4: 264 panoramas, mean 0.36 m, 99 % within 0.93 m, no outliers). The
-//! radial error is Weibull-distributed with shape and scale solved so that its mean and 99th
-//! percentile are exactly the configured ones; the direction is uniform. A configurable fraction
-//! of runs is rejected by the validity checks (the rover keeps its uncertainty and drives on).
+//! Two localizers ([`OnboardLocalizer`]), chosen per scenario with
+//! `[onboard_localization] localizer = "…"`:
+//!
+//! - `"census"`, `"ncc"`, `"mi"` — [`ImageryLocalizer`]: the real thing. Post-drive imagery is
+//!   rendered from the scenario's map at the rover's *true* position, the matcher runs from the
+//!   rover's *estimate*, and the result goes through the co-processor model
+//!   ([`localization::onboard::run_onboard`]); the HBS steps are sol-log events and the
+//!   activity's duration sits in the sol timeline.
+//! - `"statistical"` (the default) — [`StatisticalLocalizer`]: a model of the published flight
+//!   accuracy (paper 000 §4: 264 panoramas, mean 0.36 m, 99 % within 0.93 m, no outliers). The
+//!   radial error is Weibull-distributed with shape and scale solved so that its mean and 99th
+//!   percentile are exactly the configured ones; the direction is uniform. A configurable
+//!   fraction of runs is rejected by the validity checks (the rover keeps its uncertainty and
+//!   drives on). Thousands of times cheaper than imagery, for Monte Carlo sweeps.
 //!
 //! ## References
 //! Paper 000 §4 (accuracy), §7 (validity checks, uncertainty after a localization).
 
+use std::sync::Arc;
+
+use localization::matcher::Method;
+use localization::onboard::OnboardSettings;
+use maps::MapLayers;
 use rand::RngExt;
 use rand_chacha::ChaCha8Rng;
 
@@ -34,6 +48,52 @@ impl Default for StatisticalLocalizer {
             failure_rate: 0.02,
             reported_sigma_m: 0.93,
         }
+    }
+}
+
+/// The onboard localizer of a campaign.
+#[derive(Clone, Debug)]
+pub enum OnboardLocalizer {
+    /// The statistical model of the flight accuracy.
+    Statistical(StatisticalLocalizer),
+    /// Image matching on rendered post-drive imagery, through the co-processor model.
+    Imagery(Box<ImageryLocalizer>),
+}
+
+impl OnboardLocalizer {
+    /// The name used in scenario files and outputs: `statistical`, `census`, `ncc` or `mi`.
+    #[must_use]
+    pub fn name(&self) -> &'static str {
+        match self {
+            OnboardLocalizer::Statistical(_) => "statistical",
+            OnboardLocalizer::Imagery(i) => i.settings.matcher.method.name(),
+        }
+    }
+}
+
+impl Default for OnboardLocalizer {
+    fn default() -> Self {
+        OnboardLocalizer::Statistical(StatisticalLocalizer::default())
+    }
+}
+
+/// Image-matching localizer: the scenario's map (shared between strategies) and the activity's
+/// settings.
+#[derive(Clone, Debug)]
+pub struct ImageryLocalizer {
+    /// The map the imagery is rendered from (appearance, DEM, terrain class).
+    pub layers: Arc<MapLayers>,
+    /// Matcher, imaging and co-processor settings.
+    pub settings: OnboardSettings,
+}
+
+impl ImageryLocalizer {
+    /// A localizer with `method` and default settings otherwise.
+    #[must_use]
+    pub fn new(layers: Arc<MapLayers>, method: Method) -> Self {
+        let mut settings = OnboardSettings::default();
+        settings.matcher.method = method;
+        Self { layers, settings }
     }
 }
 

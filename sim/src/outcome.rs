@@ -49,14 +49,46 @@ pub struct Fault {
 pub struct LocalizationEvent {
     /// `"ground"` or `"onboard"`.
     pub kind: &'static str,
+    /// The localizer: `"ground"` (mapping specialists), or the onboard localizer's name
+    /// (`"statistical"`, `"census"`, `"ncc"`, `"mi"`).
+    pub localizer: &'static str,
     /// Whether the result was applied to the rover's estimate.
     pub applied: bool,
     /// Why it was not applied (`None` when applied).
     pub reason: Option<String>,
     /// Distance from the applied estimate to the truth, metres (`None` when not applied).
     pub error_m: Option<f64>,
+    /// Image matching only: distance from the matcher's best estimate to the truth, metres,
+    /// whether or not it passed the checks (what a rejection gave up; the truth is known only
+    /// to the simulator).
+    pub matched_error_m: Option<f64>,
+    /// The localizer's σ, metres (`None` for ground localization or when nothing was applied).
+    pub sigma_m: Option<f64>,
+    /// Search radius of an image-matching localization, metres.
+    pub search_radius_m: Option<f64>,
     /// Uncertainty radius after the event, metres.
     pub uncertainty_after_m: f64,
+    /// When the activity started, LMST `HH:MM` (`None` for a ground localization, which
+    /// arrives with the uplink).
+    pub start_lmst: Option<String>,
+    /// How long the activity took on board, seconds (transfer, runs, reboot, compare, apply).
+    pub duration_s: Option<f64>,
+    /// Its steps: the flight commands (`MOB_GROUND_LOCALIZED_HERE`, `MOB_WRITE_ONBD_INPUT_FILE`,
+    /// `MOB_APPLY_ONBD_LOCALIZATION`) and the co-processor steps in between.
+    pub steps: Vec<ActivityStep>,
+}
+
+/// One step of a localization activity in the sol log.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ActivityStep {
+    /// LMST `HH:MM` of the step (`None` for a ground step, which comes with the uplink).
+    pub lmst: Option<String>,
+    /// Seconds since the activity started.
+    pub t_s: f64,
+    /// Command or step name.
+    pub step: &'static str,
+    /// What happened.
+    pub detail: String,
 }
 
 /// One sol of one campaign run.
@@ -103,6 +135,8 @@ pub struct SolRecord {
     pub reached_goal: bool,
     /// Number of path plans (A* runs) this sol.
     pub plans: u32,
+    /// The sol's activity plan and timeline (drive sols only).
+    pub activity_plan: Option<crate::sol_plan::SolPlan>,
     /// Estimated positions along the drive, map metres (exported as GeoJSON, not in the JSON).
     #[serde(skip)]
     pub path_m: Vec<[f64; 2]>,

@@ -86,6 +86,8 @@ pub(super) struct RawUncertainty {
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct RawLocalizer {
+    pub(super) localizer: Option<String>,
+    pub(super) hbs_slowdown: Option<f64>,
     pub(super) mean_error_m: Option<f64>,
     pub(super) p99_error_m: Option<f64>,
     pub(super) failure_rate: Option<f64>,

@@ -13,16 +13,28 @@
 //! rounding error of the transforms is many orders of magnitude below ½, so rounding gives the
 //! exact integers: the result is bit-identical to [`super::hamming_scores_naive`].
 //!
-//! Determinism: the bits are accumulated in order; parallelism (`rayon`) is only over whole
-//! transforms and over disjoint chunks of the element-wise products, so the floating-point
-//! operations — and hence the rounded counts — are the same on any number of threads.
+//! **Fast path** (the matcher's case: a map whose census bits are valid everywhere but on a few
+//! pixels, such as its one-pixel border). Counting every map bit as valid, the disagreements are
+//! `C + Σ_k corr(A_k, B_k)` with `A_k = vT_k − 2·t_k` (0, ±1), `B_k` the map's valid set bits and
+//! `C` the template's valid set bits, and the valid count is the template's. That is one
+//! correlation sum: 16 forward transforms and 1 inverse instead of 32 and 2. The bits of the
+//! template that land on the map's invalid bits are then subtracted exactly, per offset, from
+//! both counts (integer popcounts; see [`hole_corrections`]). Bound on the error before
+//! rounding: about `ε·log₂N·Σ_k‖A_k‖‖B_k‖ ≈ 1.1e-16 · 18 · 8 · 240 · 480 ≈ 2e-9` at flight size,
+//! far below ½. The path is taken when those corrections are cheap ([`FAST_PAIRS_PER_OFFSET`]).
+//!
+//! Determinism: every count is an exactly rounded integer, and the floating-point sums are
+//! grouped by fixed ranges of bits and fixed chunks, never by thread; parallelism (`rayon`) is
+//! only over whole transforms, bit groups, column tiles and disjoint chunks of the element-wise
+//! products, so the counts are the same on any number of threads.
 //!
 //! Layout: planes are row-major `ny × nx` (zero-padded, `nx ≥ map width`, `ny ≥ map height`, so
 //! the circular correlation never wraps for the offsets we keep). Each row gets a real FFT
-//! (`realfft`) whose `nx/2 + 1` outputs are scattered transposed into the spectrum buffer
-//! (`[u][y]`, one contiguous column per frequency `u`), then every column gets a complex FFT
-//! (`rustfft`). The inverse runs the column FFTs and then the inverse real FFT of only the
-//! `dy` rows that are offsets. All-zero template rows are not transformed.
+//! (`realfft`) whose `nx/2 + 1` outputs are transposed into the spectrum buffer (`[u][y]`, one
+//! contiguous column per frequency `u`), then every column gets a complex FFT (`rustfft`). The
+//! fast path transposes in tiles of [`TILE_COLS`] columns and multiplies each tile while it is in
+//! cache. The inverse runs the column FFTs and then the inverse real FFT of only the `dy` rows
+//! that are offsets. All-zero template rows are not transformed.
 
 use std::sync::{Arc, Mutex, OnceLock};
 
@@ -49,6 +61,9 @@ struct Plans {
     row_inv: Arc<dyn ComplexToReal<f64>>,
     col_fwd: Arc<dyn Fft<f64>>,
     col_inv: Arc<dyn Fft<f64>>,
+    /// Spectrum buffers (`spectrum_len` each) kept for reuse across calls: fresh multi-MB
+    /// buffers cost page faults and zeroing on every call.
+    spare: Mutex<Vec<Vec<C64>>>,
 }
 
 impl Plans {
@@ -60,6 +75,27 @@ impl Plans {
     /// Length of a whole spectrum (`nxh` columns of `ny`).
     fn spectrum_len(&self) -> usize {
         self.nxh() * self.ny
+    }
+
+    /// A spectrum buffer of `spectrum_len` elements with arbitrary contents.
+    fn take_buffer(&self) -> Vec<C64> {
+        let spare = self
+            .spare
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .pop();
+        spare.unwrap_or_else(|| vec![C64::new(0.0, 0.0); self.spectrum_len()])
+    }
+
+    /// Return a buffer from [`Plans::take_buffer`] for reuse (at most [`SPARE_BUFFERS`] are kept).
+    fn give_buffer(&self, buf: Vec<C64>) {
+        let mut spare = self
+            .spare
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        if buf.len() == self.spectrum_len() && spare.len() < SPARE_BUFFERS {
+            spare.push(buf);
+        }
     }
 
     /// Plans for `nx × ny`, from the process-wide cache (planning costs more than a transform).
@@ -83,6 +119,7 @@ impl Plans {
             row_inv: real.plan_fft_inverse(nx),
             col_fwd: complex.plan_fft_forward(ny),
             col_inv: complex.plan_fft_inverse(ny),
+            spare: Mutex::new(Vec::new()),
         });
         // Keep the cache small: a matcher uses one or two sizes.
         if list.len() >= 8 {
@@ -92,6 +129,9 @@ impl Plans {
         p
     }
 }
+
+/// Spectrum buffers kept per size for reuse: the fast path uses 6 at once (3 per half).
+const SPARE_BUFFERS: usize = 6;
 
 /// The smallest even `n' ≥ max(n, 2)` of the form 2^a·3^b·5^c (fast sizes for both crates).
 fn fft_size(n: usize) -> usize {
@@ -113,7 +153,8 @@ fn fft_size(n: usize) -> usize {
 /// Reusable buffers for forward transforms.
 struct Work {
     row: Vec<f64>,
-    row_spec: Vec<C64>,
+    /// The spectra of [`ROW_BLOCK`] consecutive rows, `nxh` each.
+    block: Vec<C64>,
     real_scratch: Vec<C64>,
     col_scratch: Vec<C64>,
 }
@@ -122,12 +163,16 @@ impl Work {
     fn new(p: &Plans) -> Self {
         Self {
             row: vec![0.0; p.nx],
-            row_spec: vec![C64::new(0.0, 0.0); p.nxh()],
+            block: vec![C64::new(0.0, 0.0); ROW_BLOCK * p.nxh()],
             real_scratch: vec![C64::new(0.0, 0.0); p.row_fwd.get_scratch_len()],
             col_scratch: vec![C64::new(0.0, 0.0); p.col_fwd.get_inplace_scratch_len()],
         }
     }
 }
+
+/// Rows transformed before their spectra are scattered into the column-major spectrum, so each
+/// column receives `ROW_BLOCK` contiguous values (whole cache lines) instead of one.
+const ROW_BLOCK: usize = 8;
 
 /// Row half of a 2-D real FFT: the real FFT of each row `y < rows` that `fill` writes into a
 /// zeroed row of `nx` values, scattered transposed into `out` (`[u][y]` layout); rows
@@ -140,15 +185,20 @@ fn forward_rows(
     out: &mut [C64],
 ) {
     let (ny, nxh) = (p.ny, p.nxh());
-    for y in 0..rows {
-        w.row.fill(0.0);
-        fill(y, &mut w.row);
-        // Lengths come from the same plans, so this cannot fail.
-        p.row_fwd
-            .process_with_scratch(&mut w.row, &mut w.row_spec, &mut w.real_scratch)
-            .expect("row FFT buffers sized by the plan");
-        for (u, &v) in w.row_spec.iter().enumerate() {
-            out[u * ny + y] = v;
+    for y0 in (0..rows).step_by(ROW_BLOCK) {
+        let nb = ROW_BLOCK.min(rows - y0);
+        for (j, spec) in w.block.chunks_exact_mut(nxh).take(nb).enumerate() {
+            w.row.fill(0.0);
+            fill(y0 + j, &mut w.row);
+            // Lengths come from the same plans, so this cannot fail.
+            p.row_fwd
+                .process_with_scratch(&mut w.row, spec, &mut w.real_scratch)
+                .expect("row FFT buffers sized by the plan");
+        }
+        for (u, col) in out.chunks_exact_mut(ny).enumerate() {
+            for (j, v) in col[y0..y0 + nb].iter_mut().enumerate() {
+                *v = w.block[j * nxh + u];
+            }
         }
     }
     for u in 0..nxh {
@@ -199,6 +249,11 @@ fn forward_plane(p: &Plans, img: &CensusImage, k: usize, sign: bool, out: &mut [
     p.col_fwd.process_with_scratch(out, &mut w.col_scratch);
 }
 
+/// The fast path of [`hamming_scores_fft`] is taken while its hole corrections visit at most
+/// this many (hole, offset) pairs per offset on average (the matcher's window: about 4, its
+/// one-pixel border).
+const FAST_PAIRS_PER_OFFSET: u64 = 64;
+
 /// Elements per parallel chunk of the spectrum multiply-accumulate.
 const MAC_CHUNK: usize = 1 << 14;
 
@@ -248,31 +303,293 @@ fn summed_spectra(p: &Plans, template: &CensusImage, map: &CensusImage) -> (Vec<
     (acc_s, acc_m)
 }
 
+/// Columns per parallel task of the inverse column FFTs.
+const INV_COLS: usize = 16;
+/// Offset rows per parallel task of the inverse row FFTs.
+const INV_ROWS: usize = 8;
+
 /// Inverse 2-D FFT of a `[u][y]` cross-spectrum (consumed), rounded to integers, for offsets
-/// `0..ow × 0..oh` (row-major).
+/// `0..ow × 0..oh` (row-major). Column FFTs and then row FFTs run in parallel chunks; each
+/// element is computed by the same operations whatever thread runs it.
 fn inverse_rounded(p: &Plans, mut spec: Vec<C64>, ow: usize, oh: usize) -> Vec<i64> {
     let (ny, nxh) = (p.ny, p.nxh());
-    let mut scratch = vec![C64::new(0.0, 0.0); p.col_inv.get_inplace_scratch_len()];
-    p.col_inv.process_with_scratch(&mut spec, &mut scratch);
-    let mut row_spec = vec![C64::new(0.0, 0.0); nxh];
-    let mut row = vec![0.0f64; p.nx];
-    let mut real_scratch = vec![C64::new(0.0, 0.0); p.row_inv.get_scratch_len()];
+    let zero = C64::new(0.0, 0.0);
+    spec.par_chunks_mut(ny * INV_COLS).for_each_init(
+        || vec![zero; p.col_inv.get_inplace_scratch_len()],
+        |scratch, cols| p.col_inv.process_with_scratch(cols, scratch),
+    );
     let scale = 1.0 / (p.nx * p.ny) as f64;
-    let mut out = Vec::with_capacity(ow * oh);
-    for dy in 0..oh {
-        for (u, v) in row_spec.iter_mut().enumerate() {
-            *v = spec[u * ny + dy];
-        }
-        // The spectrum of a real plane has real DC and Nyquist terms; drop the rounding noise
-        // in their imaginary parts, which the inverse real FFT rejects.
-        row_spec[0].im = 0.0;
-        row_spec[nxh - 1].im = 0.0;
-        p.row_inv
-            .process_with_scratch(&mut row_spec, &mut row, &mut real_scratch)
-            .expect("inverse row FFT buffers sized by the plan");
-        out.extend(row[..ow].iter().map(|&v| (v * scale).round() as i64));
-    }
+    let mut out = vec![0i64; ow * oh];
+    out.par_chunks_mut(ow * INV_ROWS).enumerate().for_each_init(
+        || {
+            (
+                vec![zero; nxh],
+                vec![0.0f64; p.nx],
+                vec![zero; p.row_inv.get_scratch_len()],
+            )
+        },
+        |(row_spec, row, real_scratch), (chunk, rows_out)| {
+            for (j, out_row) in rows_out.chunks_exact_mut(ow).enumerate() {
+                let dy = chunk * INV_ROWS + j;
+                for (u, v) in row_spec.iter_mut().enumerate() {
+                    *v = spec[u * ny + dy];
+                }
+                // The spectrum of a real plane has real DC and Nyquist terms; drop the rounding
+                // noise in their imaginary parts, which the inverse real FFT rejects.
+                row_spec[0].im = 0.0;
+                row_spec[nxh - 1].im = 0.0;
+                p.row_inv
+                    .process_with_scratch(row_spec, row, real_scratch)
+                    .expect("inverse row FFT buffers sized by the plan");
+                for (o, &v) in out_row.iter_mut().zip(&row[..ow]) {
+                    *o = (v * scale).round() as i64;
+                }
+            }
+        },
+    );
+    p.give_buffer(spec);
     out
+}
+
+/// Map pixels with at least one invalid census bit, by row: the columns of row `y` are
+/// `cols[starts[y]..starts[y + 1]]`.
+struct Holes {
+    starts: Vec<usize>,
+    cols: Vec<usize>,
+}
+
+impl Holes {
+    fn of(map: &CensusImage) -> Self {
+        let mut starts = Vec::with_capacity(map.height + 1);
+        let mut cols = Vec::new();
+        starts.push(0);
+        for row in map.valid.chunks_exact(map.width) {
+            cols.extend((0..map.width).filter(|&x| row[x] != u8::MAX));
+            starts.push(cols.len());
+        }
+        Self { starts, cols }
+    }
+
+    /// Number of (hole, offset) pairs where the template covers the hole: the work of
+    /// [`hole_corrections`].
+    fn pairs(&self, tw: usize, th: usize, ow: usize, oh: usize) -> u64 {
+        // Offsets d in 0..n whose template span d..d + t covers coordinate q.
+        let covering = |q: usize, t: usize, n: usize| {
+            (q.min(n - 1) + 1).saturating_sub((q + 1).saturating_sub(t)) as u64
+        };
+        (0..self.starts.len() - 1)
+            .map(|y| {
+                let ny = covering(y, th, oh);
+                self.cols[self.starts[y]..self.starts[y + 1]]
+                    .iter()
+                    .map(|&x| ny * covering(x, tw, ow))
+                    .sum::<u64>()
+            })
+            .sum()
+    }
+}
+
+/// Per offset, the template bits that land on invalid map bits: `(Σ popcount(t & !vM),
+/// Σ popcount(vT & !vM))` with `t` the template's valid code bits, summed over the template
+/// pixels that fall on map holes. Offset rows in parallel (integer sums).
+fn hole_corrections(
+    template: &CensusImage,
+    map: &CensusImage,
+    holes: &Holes,
+    ow: usize,
+    oh: usize,
+) -> (Vec<u32>, Vec<u32>) {
+    let (tw, th) = (template.width, template.height);
+    let (mut cm, mut cv) = (vec![0u32; ow * oh], vec![0u32; ow * oh]);
+    cm.par_chunks_mut(ow)
+        .zip(cv.par_chunks_mut(ow))
+        .enumerate()
+        .for_each(|(dy, (cm, cv))| {
+            for qy in dy..(dy + th).min(map.height) {
+                let py = qy - dy;
+                let (t_codes, t_valid) = (
+                    &template.codes[py * tw..(py + 1) * tw],
+                    &template.valid[py * tw..(py + 1) * tw],
+                );
+                for &qx in &holes.cols[holes.starts[qy]..holes.starts[qy + 1]] {
+                    let inv = !map.valid[qy * map.width + qx];
+                    // dx with qx - dx in 0..tw and dx in 0..ow.
+                    for dx in (qx + 1).saturating_sub(tw)..=qx.min(ow - 1) {
+                        let px = qx - dx;
+                        let tv = t_valid[px] & inv;
+                        cm[dx] += (t_codes[px] & tv).count_ones();
+                        cv[dx] += tv.count_ones();
+                    }
+                }
+            }
+        });
+    (cm, cv)
+}
+
+/// Spectrum columns per tile of [`fast_partial`]'s column stage (a tile of the template and one
+/// of the map, `ny` rows each, stay in L2).
+const TILE_COLS: usize = 8;
+
+/// Real FFTs of rows `0..rows` of a plane (`fill` writes each into a zeroed row of `nx`
+/// values), stored row-major: `out[y * nxh + u]`.
+fn rows_forward(
+    p: &Plans,
+    w: &mut Work,
+    rows: usize,
+    fill: impl Fn(usize, &mut [f64]),
+    out: &mut [C64],
+) {
+    for (y, spec) in out.chunks_exact_mut(p.nxh()).take(rows).enumerate() {
+        w.row.fill(0.0);
+        fill(y, &mut w.row);
+        // Lengths come from the same plans, so this cannot fail.
+        p.row_fwd
+            .process_with_scratch(&mut w.row, spec, &mut w.real_scratch)
+            .expect("row FFT buffers sized by the plan");
+    }
+}
+
+/// Columns `u0..u0 + cols` of row-major row spectra (`rows` rows of `nxh`) into a tile of `cols`
+/// contiguous columns of `ny` (rows `rows..ny` zero), then their column FFTs.
+fn tile_forward(p: &Plans, w: &mut Work, src: &[C64], rows: usize, u0: usize, tile: &mut [C64]) {
+    let (ny, nxh) = (p.ny, p.nxh());
+    let cols = tile.len() / ny;
+    for (y, r) in src.chunks_exact(nxh).take(rows).enumerate() {
+        for (c, &v) in r[u0..u0 + cols].iter().enumerate() {
+            tile[c * ny + y] = v;
+        }
+    }
+    for col in tile.chunks_exact_mut(ny) {
+        col[rows..].fill(C64::new(0.0, 0.0));
+    }
+    p.col_fwd.process_with_scratch(tile, &mut w.col_scratch);
+}
+
+/// `Σ_k conj(Â_k)·B̂_k` over the bits `bits`, with `A_k` the template plane `vT_k − 2·t_k`
+/// (0 invalid, +1 valid and clear, −1 valid and set) and `B_k` the map plane of valid set bits.
+///
+/// Per bit, the row FFTs of both planes are stored row-major (sequential writes); the column
+/// stage then works on tiles of [`TILE_COLS`] columns (gathered, transformed, multiplied and
+/// accumulated while in cache) instead of scattering every row spectrum across the whole
+/// column-major buffer.
+fn fast_partial(
+    p: &Plans,
+    template: &CensusImage,
+    map: &CensusImage,
+    bits: std::ops::Range<usize>,
+) -> Vec<C64> {
+    let (ny, nxh) = (p.ny, p.nxh());
+    let zero = C64::new(0.0, 0.0);
+    let (mut acc, mut t_rows, mut m_rows) = (p.take_buffer(), p.take_buffer(), p.take_buffer());
+    acc.fill(zero);
+    let mut w = Work::new(p);
+    let (mut t_tile, mut m_tile) = (vec![zero; TILE_COLS * ny], vec![zero; TILE_COLS * ny]);
+    let (tw, th, mw, mh) = (template.width, template.height, map.width, map.height);
+    for k in bits {
+        rows_forward(
+            p,
+            &mut w,
+            th,
+            |y, row| {
+                let r = y * tw..(y + 1) * tw;
+                for ((o, &c), &v) in row
+                    .iter_mut()
+                    .zip(&template.codes[r.clone()])
+                    .zip(&template.valid[r])
+                {
+                    let (v, t) = ((v >> k) & 1, (c & v) >> k & 1);
+                    *o = f64::from(v) - 2.0 * f64::from(t);
+                }
+            },
+            &mut t_rows,
+        );
+        rows_forward(
+            p,
+            &mut w,
+            mh,
+            |y, row| {
+                let r = y * mw..(y + 1) * mw;
+                for ((o, &c), &v) in row.iter_mut().zip(&map.codes[r.clone()]).zip(&map.valid[r]) {
+                    *o = f64::from((c & v) >> k & 1);
+                }
+            },
+            &mut m_rows,
+        );
+        for u0 in (0..nxh).step_by(TILE_COLS) {
+            let cols = TILE_COLS.min(nxh - u0);
+            let (tt, mt) = (&mut t_tile[..cols * ny], &mut m_tile[..cols * ny]);
+            tile_forward(p, &mut w, &t_rows, th, u0, tt);
+            tile_forward(p, &mut w, &m_rows, mh, u0, mt);
+            mul_acc(&mut acc[u0 * ny..(u0 + cols) * ny], tt, mt);
+        }
+    }
+    p.give_buffer(t_rows);
+    p.give_buffer(m_rows);
+    acc
+}
+
+/// The fast path of [`hamming_scores_fft`] for maps whose census bits are valid almost
+/// everywhere (the matcher's search window: all but its one-pixel border).
+///
+/// Treating every map bit as valid, the disagreements at an offset are
+/// `Σ_k Σ_p vT_k·[t_k ≠ b_k] = C + Σ_k corr(A_k, B_k)`, with `C` the template's set valid bits,
+/// `A_k = vT_k − 2·t_k` and `B_k` the map's valid set bits: one correlation sum, i.e. 16 forward
+/// transforms and 1 inverse instead of 32 and 2. Map bits that are in fact invalid are then
+/// taken out exactly, per offset, by [`hole_corrections`] (there, `b_k = 0`, so the template
+/// bit counted a disagreement iff it was set).
+fn fast_scores(
+    p: &Plans,
+    template: &CensusImage,
+    map: &CensusImage,
+    holes: &Holes,
+    ow: usize,
+    oh: usize,
+) -> (Vec<u32>, Vec<u32>) {
+    // Two fixed halves of the bits (not one per thread), so the sums do not depend on the
+    // thread count.
+    let ((mut acc, other), (cm, cv)) = rayon::join(
+        || {
+            rayon::join(
+                || fast_partial(p, template, map, 0..BITS / 2),
+                || fast_partial(p, template, map, BITS / 2..BITS),
+            )
+        },
+        || hole_corrections(template, map, holes, ow, oh),
+    );
+    acc.par_chunks_mut(MAC_CHUNK)
+        .zip(other.par_chunks(MAC_CHUNK))
+        .for_each(|(a, b)| {
+            for (a, b) in a.iter_mut().zip(b) {
+                *a += b;
+            }
+        });
+    p.give_buffer(other);
+    let agree_term = inverse_rounded(p, acc, ow, oh);
+    let set_bits: i64 = template
+        .codes
+        .iter()
+        .zip(&template.valid)
+        .map(|(&c, &v)| i64::from((c & v).count_ones()))
+        .sum();
+    let valid_bits: i64 = template
+        .valid
+        .iter()
+        .map(|&v| i64::from(v.count_ones()))
+        .sum();
+    let mismatch = agree_term
+        .iter()
+        .zip(&cm)
+        .map(|(&s, &c)| {
+            let m = set_bits + s - i64::from(c);
+            debug_assert!(m >= 0);
+            m as u32
+        })
+        .collect();
+    let valid = cv
+        .iter()
+        .map(|&c| (valid_bits - i64::from(c)) as u32)
+        .collect();
+    (mismatch, valid)
 }
 
 /// The masked Hamming counts of every offset by bit-plane FFT correlation: bit-identical to
@@ -280,18 +597,20 @@ fn inverse_rounded(p: &Plans, mut spec: Vec<C64>, ow: usize, oh: usize) -> Vec<i
 /// [`hamming_scores`](super::hamming_scores), same [`ScoreMap`] layout and offset convention
 /// (offset `(dx, dy)` puts template pixel `(x, y)` on map pixel `(x + dx, y + dy)`).
 ///
-/// Its cost depends on the map size only (32 forward and 2 inverse real 2-D FFTs of the map
-/// size padded to a 2^a·3^b·5^c size), not on the number of offsets × template pixels, so it
-/// wins for large templates with large search windows and loses for small ones. FFT plans are
-/// cached per size. The transforms run in parallel on the current `rayon` pool; the result does
-/// not depend on the thread count.
+/// Its cost depends on the map size only (16 forward and 1 inverse real 2-D FFTs of the map
+/// size padded to a 2^a·3^b·5^c size on the fast path — a map valid everywhere but on a few
+/// pixels, as in the matcher — and 32 + 2 otherwise), not on the number of offsets × template
+/// pixels, so it wins for large templates with large search windows and loses for small ones.
+/// FFT plans and spectrum buffers are cached per size. The transforms run in parallel on the
+/// current `rayon` pool; the result does not depend on the thread count.
 ///
 /// # Performance
-/// 240² template over a 480² map (58,081 offsets), 5 % invalid + 30 % wedge, 2-vCPU KVM Xeon,
-/// `-C target-cpu=native`: about 37 ms on 1 thread and 21 ms on 2 idle threads, against 165 ms
-/// for [`hamming_scores`](super::hamming_scores) on 1 thread and 43 ms for 24 × OpenCV
-/// `TM_CCORR` (BENCHMARKS.md, "Localization: exact census scores"). The cost is almost independent of the template size and
-/// of the invalid fraction. For small templates or search windows, the brute force is faster.
+/// 240² template over a 480² map (58,081 offsets), 5 % invalid + 30 % wedge, fully valid map,
+/// 2-vCPU KVM Xeon, `-C target-cpu=native`: about 14 ms on 1 thread (37 ms before the fast
+/// path), against 165 ms for [`hamming_scores`](super::hamming_scores) on 1 thread and about
+/// 43 ms for 24 × OpenCV `TM_CCORR` (BENCHMARKS.md, "Localization: exact census scores"). The
+/// cost is almost independent of the template size and of the invalid fraction of the
+/// template. For small templates or search windows, the brute force is faster.
 ///
 /// # Errors
 /// The same as [`hamming_scores_naive`](super::hamming_scores_naive):
@@ -323,6 +642,19 @@ pub fn hamming_scores_fft(
         map.height - template.height + 1,
     );
     let p = Plans::get(fft_size(map.width), fft_size(map.height));
+    let holes = Holes::of(map);
+    // The fast path when its exact corrections cost little next to the transforms it saves.
+    if holes.pairs(template.width, template.height, ow, oh)
+        <= FAST_PAIRS_PER_OFFSET * (ow * oh) as u64
+    {
+        let (mismatch, valid) = fast_scores(&p, template, map, &holes, ow, oh);
+        return Ok(ScoreMap {
+            width: ow,
+            height: oh,
+            mismatch,
+            valid,
+        });
+    }
     let (sum_s, sum_m) = summed_spectra(&p, template, map);
     let (agree_minus, valid) = rayon::join(
         || inverse_rounded(&p, sum_s, ow, oh),
@@ -452,5 +784,47 @@ mod tests {
         let got = hamming_scores_fft(&t, &m).unwrap();
         assert_eq!((got.width, got.height), (241, 241));
         assert_eq!(got, want);
+    }
+
+    /// Whether `hamming_scores_fft` takes the fast path for this pair.
+    fn fast_path(t: &CensusImage, m: &CensusImage) -> bool {
+        let (ow, oh) = (m.width - t.width + 1, m.height - t.height + 1);
+        Holes::of(m).pairs(t.width, t.height, ow, oh) <= FAST_PAIRS_PER_OFFSET * (ow * oh) as u64
+    }
+
+    #[test]
+    fn fast_path_with_holes_inside_the_map_and_general_path_equal_naive() {
+        // A map valid everywhere but its border and a few scattered pixels: the fast path, with
+        // corrections inside the map too (the pixels' neighbours lose bits as well).
+        let t = random_census(40, 31, 0.05, true, 11);
+        let img = random_census(96, 80, 0.0, false, 12);
+        let mut valid = vec![true; 96 * 80];
+        for i in [97 * 13, 96 * 40 + 50, 96 * 79 - 2, 96 * 21 + 3] {
+            valid[i] = false;
+        }
+        let m = census_transform(&img.codes, &valid, 96, 80);
+        assert!(fast_path(&t, &m));
+        assert_eq!(
+            hamming_scores_fft(&t, &m).unwrap(),
+            hamming_scores_naive(&t, &m).unwrap()
+        );
+        // A map with many holes: the general path (32 + 2 transforms).
+        let m = random_census(96, 80, 0.1, false, 13);
+        assert!(!fast_path(&t, &m));
+        assert_eq!(
+            hamming_scores_fft(&t, &m).unwrap(),
+            hamming_scores_naive(&t, &m).unwrap()
+        );
+        // Codes with bits set where they are invalid (the fields are public) count as clear.
+        let mut t2 = t.clone();
+        for (c, v) in t2.codes.iter_mut().zip(&t2.valid) {
+            *c |= !v & 0b1010_0101;
+        }
+        let m = random_census(96, 80, 0.0, false, 14);
+        assert!(fast_path(&t2, &m));
+        assert_eq!(
+            hamming_scores_fft(&t2, &m).unwrap(),
+            hamming_scores_naive(&t2, &m).unwrap()
+        );
     }
 }

@@ -73,10 +73,11 @@ pub struct OrbitalParams {
     /// judgement)
     pub dust_devil_track_darkening: [f64; 2],
     /// How far the sand ripples migrated downwind between the orbital epoch and the rover's,
-    /// metres, any finite value (a shift of one ripple wavelength, 3 m, is no shift). Martian
+    /// metres, any finite value (the ripple trains are not periodic, so no shift is equivalent to
+    /// none; it applies to loose sand only, not the coarse-grained lag of the troughs). Martian
     /// ripples move ~0.1-1 m per Earth year (Bridges et al., Nature 485, 2012; Silvestro et
     /// al., Geology 41, 2013) and the map predates the drives by 1-4 years. (default: 0.75 —
-    /// a quarter wavelength, judgement)
+    /// about a quarter of a ripple wavelength, judgement)
     pub ripple_migration_m: f64,
     /// Standard deviation of the orthorectification / co-registration displacement of the
     /// orbital image along each axis, metres, ≥ 0: a smooth field (single-octave value noise

@@ -3,7 +3,7 @@
 use maps::{GeoTransform, MapLayers, Raster, TerrainClass};
 use rayon::prelude::*;
 
-use super::noise::{SplitMix, ValueFbm, floor_i64, gaussian, hash2, sub_seed};
+use super::noise::{SplitMix, ValueFbm, floor_i64, gaussian, hash2, sub_seed, value};
 use super::{ORBITAL_DEM_RESOLUTION_M_PER_PX, SyntheticError, TRUTH_RESOLUTION_M_PER_PX};
 
 /// Truth pixels per orbital DEM block along each axis (1 m / 0.25 m).
@@ -24,30 +24,159 @@ const DETAIL_WAVELENGTH_M: f64 = 3.0;
 /// Wavelength of the albedo texture, metres.
 const TEXTURE_WAVELENGTH_M: f64 = 2.0;
 
-/// Crest-to-crest spacing of the aeolian ripples on sand, metres. Large (decimetre-high)
-/// ripples on Martian sand have 1–5 m spacing (Lapotre et al., Science 353, 2016); 3 m is a
-/// judgement in that range.
+/// Mean crest-to-crest spacing of the aeolian ripples on loose sand, metres. Large
+/// (decimetre-high) ripples on Martian sand have 1–5 m spacing (Lapotre et al., Science 353,
+/// 2016); 3 m is a judgement in that range. The trains of [`RIPPLE_TRAINS`] vary about it.
 pub(super) const RIPPLE_WAVELENGTH_M: f64 = 3.0;
 /// Half the crest-to-trough height of the ripples, metres (judgement: 10 cm crest to trough).
 pub(super) const RIPPLE_AMPLITUDE_M: f64 = 0.05;
-/// Direction the ripple crests run, degrees clockwise from north. One regional wind sets every
-/// ripple's orientation (judgement: the value is arbitrary, the uniformity is the physics).
-pub(super) const RIPPLE_CREST_AZIMUTH_DEG: f64 = 20.0;
+/// The ripple trains on loose sand: (crest azimuth, degrees clockwise from north; mean crest
+/// spacing, metres). Martian sand carries ripples of several orientations and spacings at
+/// once — a dominant train set by the prevailing wind, others left by seasonal winds from other
+/// quarters, oblique to it — and in the Jezero bedform fields the rover drove near (Séítah, the
+/// Kerrlaguna and Honeyguide megaripple fields, NASA Perseverance mission updates 2021–2025)
+/// their crests are wavy and bifurcating, not parallel lines (large Martian ripples: Lapotre et al., Science 353,
+/// 2016). The three trains, 40° apart with
+/// 2.4–3.7 m spacing, are a judgement. Each train dominates its own patches of
+/// [`RIPPLE_REGION_M`] and they blend at the patch borders, where crests of different spacing
+/// meet, end and fork (Y-junctions).
+const RIPPLE_TRAINS: [(f64, f64); 3] = [(20.0, RIPPLE_WAVELENGTH_M), (60.0, 2.4), (-20.0, 3.7)];
+/// Size of the patches in which one ripple train dominates, metres (the wavelength of the
+/// value noise that weights the trains; judgement: a few tens of crests).
+const RIPPLE_REGION_M: f64 = 25.0;
+/// Contrast of the train weights (`exp(k × noise)`): 3 lets one train dominate most places and
+/// leaves transition zones a few metres wide (judgement).
+const RIPPLE_REGION_SHARPNESS: f64 = 3.0;
+/// Wavelength of the smooth phase warp that makes the crests wavy and the local spacing vary
+/// by about ±30 % (2–4 m for the 3 m train), metres (judgement).
+const RIPPLE_WARP_WAVELENGTH_M: f64 = 10.0;
+/// Standard deviation of that phase warp, in ripple wavelengths (judgement).
+const RIPPLE_WARP_CYCLES: f64 = 0.45;
+/// Seed of the ripple pattern. The pattern is a fixed function of map position (not of the
+/// case seed), so the orbital renderer can move it between epochs from the position alone.
+const RIPPLE_SEED: u64 = 0x51D5_7A4D_2026_0003;
+/// Standard deviation of [`value`] noise (see `noise.rs`).
+const VALUE_SD: f64 = 0.75;
 
-/// Height of the ripple field (before the sand weight) at map point `(x, y)` after the ripples
-/// migrated `migration_m` downwind (perpendicular to the crests), metres.
+/// Height of the ripple field (before the loose-sand weight) at map point `(x, y)` after the
+/// ripples migrated `migration_m` downwind (each train perpendicular to its crests), metres.
+///
+/// Each train of [`RIPPLE_TRAINS`] is a sinusoid whose phase is warped by smooth noise (wavy
+/// crests, varying spacing); the trains are weighted by `exp(k × noise)` patches and summed,
+/// normalised by the root of the summed squared weights so the height spread is that of one
+/// train (±[`RIPPLE_AMPLITUDE_M`]) wherever one dominates. Migration translates each train's
+/// pattern (warp included) along its own across-crest direction; the patch weights stay put.
 #[inline]
 pub(super) fn ripple_height_m(x: f64, y: f64, migration_m: f64) -> f64 {
-    // Unit vector across the crests: the crest direction turned 90° clockwise.
-    let across = (RIPPLE_CREST_AZIMUTH_DEG + 90.0).to_radians();
-    let s = x * across.sin() + y * across.cos() - migration_m;
-    RIPPLE_AMPLITUDE_M * (std::f64::consts::TAU * s / RIPPLE_WAVELENGTH_M).sin()
+    let (mut acc, mut norm) = (0.0, 0.0);
+    for (k, &(azimuth_deg, wavelength_m)) in RIPPLE_TRAINS.iter().enumerate() {
+        let k = k as u64;
+        let weight = (RIPPLE_REGION_SHARPNESS
+            * value(
+                sub_seed(RIPPLE_SEED, 2 * k),
+                x / RIPPLE_REGION_M,
+                y / RIPPLE_REGION_M,
+            ))
+        .exp();
+        // Unit vector across the crests: the crest direction turned 90° clockwise.
+        let across = (azimuth_deg + 90.0).to_radians();
+        let (ax, ay) = (across.sin(), across.cos());
+        let (xm, ym) = (x - migration_m * ax, y - migration_m * ay);
+        let warp = RIPPLE_WARP_CYCLES / VALUE_SD
+            * value(
+                sub_seed(RIPPLE_SEED, 2 * k + 1),
+                xm / RIPPLE_WARP_WAVELENGTH_M,
+                ym / RIPPLE_WARP_WAVELENGTH_M,
+            );
+        let phase = (xm * ax + ym * ay) / wavelength_m + warp;
+        acc += weight * (std::f64::consts::TAU * phase).sin();
+        norm += weight * weight;
+    }
+    RIPPLE_AMPLITUDE_M * acc / norm.sqrt()
+}
+
+/// Radius of the ring of map-DEM samples whose mean is the local mean height that tells a
+/// bedform trough (interdune) from a crest, metres: about half the 20 m spacing of the
+/// benchmark's large bedforms (judgement).
+const INTERDUNE_RING_M: f64 = 8.0;
+/// Depth below the local mean over which a sand pixel turns from loose sand to an armoured
+/// interdune, metres (judgement, against the 1–2 m relief of the large bedforms).
+const INTERDUNE_DEPTH_M: f64 = 0.5;
+/// Wavelength of the noise that makes the interdune armour patchy, metres (judgement).
+const INTERDUNE_NOISE_M: f64 = 14.0;
+/// Weight of that noise against the trough depth (in units of [`INTERDUNE_DEPTH_M`]).
+const INTERDUNE_NOISE_WEIGHT: f64 = 0.8;
+/// Threshold of the armour index (trough depth + noise) and the width of its soft edge:
+/// chosen so about 55–65 % of the benchmark dune map stays loose sand (judgement).
+const INTERDUNE_THRESHOLD: (f64, f64) = (1.1, 0.8);
+/// Wavelength of the noise that picks bedrock exposures inside the armoured interdunes, metres.
+const BEDROCK_EXPOSURE_NOISE_M: f64 = 9.0;
+/// Noise level (unit-variance units) above which an armoured interdune shows bedrock, and the
+/// width of the soft edge: about a quarter of the armoured area (judgement; Séítah's
+/// megaripples lie between olivine-rich bedrock outcrops).
+const BEDROCK_EXPOSURE_THRESHOLD: (f64, f64) = (0.9, 0.6);
+
+/// How a pixel of the sand class is covered: shares of loose (rippled, mobile) sand, coarse
+/// granule-and-pebble lag, and bedrock, summing to 1.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct SandCover {
+    loose: f64,
+    coarse: f64,
+    bedrock: f64,
+}
+
+#[inline]
+fn smoothstep01(t: f64) -> f64 {
+    let t = t.clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+/// The cover of a sand-class pixel at map point `(x, y)` whose map-DEM height is `ground_m`.
+///
+/// Martian dune and megaripple fields are not wall-to-wall sand: the mobile sand sits on the
+/// bedform bodies, and the interdune corridors are deflated, armoured by coarse granules and
+/// pebbles with scattered rocks, with bedrock showing through in places — the megaripples
+/// Perseverance studied at Kerrlaguna and Hazyview are crusted and coarse-grained, about 1 m
+/// tall, between rocky ground (NASA Perseverance mission updates, 2025; Séítah's bedforms lie
+/// between olivine-cumulate outcrops, Farley et al., Science 377, 2022). Here the armour index
+/// is the depth of the pixel below the mean map height on a ring of [`INTERDUNE_RING_M`]
+/// (troughs) in units of [`INTERDUNE_DEPTH_M`], plus patchy noise; it turns loose sand into
+/// coarse lag over a soft threshold, and a second noise turns part of the lag into bedrock.
+/// A pure function of (seed, map position).
+fn sand_cover(dem: &Raster<f32>, seed: u64, x: f64, y: f64, ground_m: f64) -> SandCover {
+    let mut ring = 0.0;
+    for k in 0..8 {
+        let a = f64::from(k) * std::f64::consts::FRAC_PI_4;
+        let (px, py) = (
+            x + INTERDUNE_RING_M * a.cos(),
+            y + INTERDUNE_RING_M * a.sin(),
+        );
+        ring += dem.sample_bilinear(px, py).map_or(ground_m, f64::from);
+    }
+    let depth = ring / 8.0 - ground_m;
+    let patchy = value(seed, x / INTERDUNE_NOISE_M, y / INTERDUNE_NOISE_M) / VALUE_SD;
+    let index = depth / INTERDUNE_DEPTH_M + INTERDUNE_NOISE_WEIGHT * patchy;
+    let (t0, tw) = INTERDUNE_THRESHOLD;
+    let armoured = smoothstep01((index - t0) / tw);
+    let exposure = value(
+        sub_seed(seed, 1),
+        x / BEDROCK_EXPOSURE_NOISE_M,
+        y / BEDROCK_EXPOSURE_NOISE_M,
+    ) / VALUE_SD;
+    let (b0, bw) = BEDROCK_EXPOSURE_THRESHOLD;
+    let bedrock = armoured * smoothstep01((exposure - b0) / bw);
+    SandCover {
+        loose: 1.0 - armoured,
+        coarse: armoured - bedrock,
+        bedrock,
+    }
 }
 
 const SALT_DETAIL: u64 = 1;
 const SALT_TEXTURE: u64 = 2;
 const SALT_GRAIN: u64 = 3;
 const SALT_ROCKS: u64 = 4;
+const SALT_COVER: u64 = 5;
 
 /// The true terrain around a point: what the orbital and rover renderers image.
 ///
@@ -159,16 +288,42 @@ impl ClassLook {
         }
     }
 
+    /// The coarse lag of armoured interdunes: granules and pebbles over sand, brighter and
+    /// more textured than loose sand, with scattered rocks (0.04 per m², half the soil's;
+    /// judgement), and a thin veneer of loose sand (its ripples subdued to 15 %).
+    fn coarse_lag() -> Self {
+        Self {
+            albedo: 0.18,
+            texture: 0.07,
+            detail_m: 0.04,
+            rocks_per_m2: 0.02,
+            sand: 0.15,
+        }
+    }
+
+    /// The look of a sand-class pixel with cover `c`: loose sand, coarse lag and bedrock
+    /// blended by their shares.
+    fn of_sand_cover(c: SandCover) -> Self {
+        let mut look = Self::default();
+        look.add_scaled(Self::of_code(TerrainClass::Sand.code()), c.loose);
+        look.add_scaled(Self::coarse_lag(), c.coarse);
+        look.add_scaled(Self::of_code(TerrainClass::Bedrock.code()), c.bedrock);
+        look
+    }
+
     fn add_scaled(&mut self, o: Self, k: f64) {
         self.albedo += k * o.albedo;
         self.texture += k * o.texture;
         self.detail_m += k * o.detail_m;
+        self.rocks_per_m2 += k * o.rocks_per_m2;
         self.sand += k * o.sand;
     }
 
-    /// The look at map point `(x, y)`: classes blended bilinearly between terrain pixel centres,
-    /// so class borders are not staircases of map pixels.
-    fn blended(terrain: &Raster<u8>, x: f64, y: f64) -> Self {
+    /// The look at map point `(x, y)` (map-DEM height `ground_m`): classes blended bilinearly
+    /// between terrain pixel centres, so class borders are not staircases of map pixels; the
+    /// sand class by its [`sand_cover`] there.
+    fn blended(layers: &MapLayers, cover_seed: u64, x: f64, y: f64, ground_m: f64) -> Self {
+        let terrain = &layers.terrain;
         let (c, r) = terrain.geo.pixel_of(x, y);
         let (w, h) = (terrain.width, terrain.height);
         let c = (c - 0.5).clamp(0.0, (w - 1) as f64);
@@ -177,15 +332,37 @@ impl ClassLook {
         let (c1, r1) = ((c0 + 1).min(w - 1), (r0 + 1).min(h - 1));
         let (tx, ty) = (c - c0 as f64, r - r0 as f64);
         let mut look = Self::default();
+        let mut sand_look = None;
         for (cc, rr, k) in [
             (c0, r0, (1.0 - tx) * (1.0 - ty)),
             (c1, r0, tx * (1.0 - ty)),
             (c0, r1, (1.0 - tx) * ty),
             (c1, r1, tx * ty),
         ] {
-            look.add_scaled(Self::of_code(terrain.data[rr * w + cc]), k);
+            let code = terrain.data[rr * w + cc];
+            let corner = if code == TerrainClass::Sand.code() {
+                *sand_look.get_or_insert_with(|| {
+                    Self::of_sand_cover(sand_cover(&layers.dem, cover_seed, x, y, ground_m))
+                })
+            } else {
+                Self::of_code(code)
+            };
+            look.add_scaled(corner, k);
         }
         look
+    }
+
+    /// Rocks per m² at map point `(x, y)`: the class under it (nearest map pixel), the sand
+    /// class by its cover.
+    fn rock_density(layers: &MapLayers, cover_seed: u64, x: f64, y: f64) -> f64 {
+        match layers.terrain.sample_nearest(x, y) {
+            None => 0.0,
+            Some(code) if code == TerrainClass::Sand.code() => {
+                let ground = layers.dem.sample_bilinear(x, y).map_or(0.0, f64::from);
+                Self::of_sand_cover(sand_cover(&layers.dem, cover_seed, x, y, ground)).rocks_per_m2
+            }
+            Some(code) => Self::of_code(code).rocks_per_m2,
+        }
     }
 }
 
@@ -203,7 +380,14 @@ struct Rock {
 
 /// The rocks whose centres fall in world cell `(ix, iy)`: a Poisson number at the densest
 /// class's rate, thinned by the density of the class under each rock.
-fn rocks_in_cell(seed: u64, ix: i64, iy: i64, terrain: &Raster<u8>, out: &mut Vec<Rock>) {
+fn rocks_in_cell(
+    seed: u64,
+    cover_seed: u64,
+    ix: i64,
+    iy: i64,
+    layers: &MapLayers,
+    out: &mut Vec<Rock>,
+) {
     let max_density = ClassLook::of_code(TerrainClass::Bedrock.code()).rocks_per_m2;
     let lambda = max_density * ROCK_CELL_M * ROCK_CELL_M;
     let mut rng = SplitMix(hash2(seed, ix, iy));
@@ -230,9 +414,7 @@ fn rocks_in_cell(seed: u64, ix: i64, iy: i64, terrain: &Raster<u8>, out: &mut Ve
         let angle_rad = rng.range(0.0, std::f64::consts::PI);
         let height_m = diameter * rng.range(ROCK_HEIGHT_RATIO.0, ROCK_HEIGHT_RATIO.1);
         let albedo = rng.range(ROCK_ALBEDO.0, ROCK_ALBEDO.1);
-        let density = terrain
-            .sample_nearest(x, y)
-            .map_or(0.0, |code| ClassLook::of_code(code).rocks_per_m2);
+        let density = ClassLook::rock_density(layers, cover_seed, x, y);
         if keep * max_density < density {
             out.push(Rock {
                 center_m: [x, y],
@@ -252,11 +434,14 @@ fn rocks_in_cell(seed: u64, ix: i64, iy: i64, terrain: &Raster<u8>, out: &mut Ve
 /// lattice of the map DEM's origin so that its 1 m blocks line up with 1 m map pixels.
 /// Heights are the bilinear map DEM plus fine fBm detail (±3 cm on sand to ±20 cm on bedrock)
 /// plus rocks (ellipsoidal domes 0.1–1.5 m across, 0.3–0.8 × their diameter high; about 0.4
-/// per m² on bedrock, 0.08 on soil, 0.004 on sand; one in twenty is over 0.5 m across), plus
-/// on sand aeolian ripples (3 m crest spacing, 10 cm crest to trough, crests all running 20°
-/// east of north), weighted by the blended sand share that [`TruthPatch::sand`] records.
-/// Albedo follows the terrain class (sand 0.15 and smooth, soil 0.22, bedrock 0.29 and
-/// textured; rocks 0.19–0.27) with seeded texture; classes blend over one map pixel. The map's
+/// per m² on bedrock, 0.08 on soil, 0.04 on coarse interdune lag, 0.004 on loose sand; one in
+/// twenty is over 0.5 m across), plus on loose sand aeolian ripples (three trains 40° apart
+/// with 2.4–3.7 m mean spacing, wavy, forking crests, 10 cm crest to trough; see
+/// `RIPPLE_TRAINS`), weighted by the loose-sand share that [`TruthPatch::sand`] records.
+/// The sand class is loose sand on the bedform bodies and armoured lag or bedrock in the
+/// troughs between them (`sand_cover`).
+/// Albedo follows the terrain class (loose sand 0.15 and smooth, lag 0.20, soil 0.22, bedrock
+/// 0.29 and textured; rocks 0.19–0.27) with seeded texture; classes blend over one map pixel. The map's
 /// appearance layer is not used: [`render_orbital`](super::render_orbital) makes its own.
 /// Every value is a pure function of (`seed`, map position), so overlapping patches agree where
 /// they overlap and the thread count does not matter.
@@ -318,6 +503,7 @@ pub fn truth_patch(
     let detail = ValueFbm::new(sub_seed(seed, SALT_DETAIL), DETAIL_WAVELENGTH_M, 4);
     let texture = ValueFbm::new(sub_seed(seed, SALT_TEXTURE), TEXTURE_WAVELENGTH_M, 3);
     let grain_seed = sub_seed(seed, SALT_GRAIN);
+    let cover_seed = sub_seed(seed, SALT_COVER);
     let xs: Vec<f64> = (0..n).map(|col| geo.center_of(col, 0).0).collect();
     let mut height = vec![0.0f32; n * n];
     let mut albedo = vec![0.0f32; n * n];
@@ -339,9 +525,9 @@ pub fn truth_patch(
                 .enumerate()
             {
                 let x = xs[col];
-                let look = ClassLook::blended(&layers.terrain, x, y);
                 // Pixel centres lie inside the DEM (checked above); the fallback is never used.
                 let ground = f64::from(layers.dem.sample_bilinear(x, y).unwrap_or(0.0));
+                let look = ClassLook::blended(layers, cover_seed, x, y, ground);
                 let ripples = if look.sand > 0.0 {
                     look.sand * ripple_height_m(x, y, 0.0)
                 } else {
@@ -362,7 +548,8 @@ pub fn truth_patch(
 
     stamp_rocks(
         sub_seed(seed, SALT_ROCKS),
-        &layers.terrain,
+        cover_seed,
+        layers,
         geo,
         n,
         &mut height,
@@ -395,7 +582,8 @@ pub fn truth_patch(
 /// the tallest wins, so the result does not depend on the order they are stamped in.
 fn stamp_rocks(
     seed: u64,
-    terrain: &Raster<u8>,
+    cover_seed: u64,
+    layers: &MapLayers,
     geo: GeoTransform,
     n: usize,
     height: &mut [f32],
@@ -411,7 +599,7 @@ fn stamp_rocks(
     let mut rocks = Vec::new();
     for iy in iy0..=iy1 {
         for ix in ix0..=ix1 {
-            rocks_in_cell(seed, ix, iy, terrain, &mut rocks);
+            rocks_in_cell(seed, cover_seed, ix, iy, layers, &mut rocks);
         }
     }
     let mut rock_h = vec![0.0f32; n * n];
@@ -469,7 +657,7 @@ mod tests {
         let mut rocks = Vec::new();
         for iy in 5..45 {
             for ix in 5..45 {
-                rocks_in_cell(7, ix, iy, &l.terrain, &mut rocks);
+                rocks_in_cell(7, 8, ix, iy, l, &mut rocks);
             }
         }
         rocks.len() as f64 / (40.0 * 40.0 * ROCK_CELL_M * ROCK_CELL_M)
@@ -482,11 +670,75 @@ mod tests {
             rocks_per_m2(&layers(2)),
             rocks_per_m2(&layers(3)),
         );
-        assert!(sand < 0.01 && (0.06..0.10).contains(&soil) && (0.33..0.47).contains(&rock));
+        // Flat sand (no bedform troughs): almost all loose sand (0.004 per m²), a few patches
+        // of lag; the troughs' armour is tested below.
+        assert!(
+            sand < 0.02 && (0.06..0.10).contains(&soil) && (0.33..0.47).contains(&rock),
+            "{sand} {soil} {rock}"
+        );
         let sand = truth_patch(&layers(1), [50.0, 50.0], 20.0, 3).unwrap();
         let rock = truth_patch(&layers(3), [50.0, 50.0], 20.0, 3).unwrap();
         let mean = |p: &TruthPatch| p.albedo.data.iter().sum::<f32>() / p.albedo.data.len() as f32;
         assert!(mean(&sand) < mean(&rock));
+    }
+
+    #[test]
+    fn interdune_troughs_are_armoured_and_bedform_crests_loose() {
+        // Bedforms of 20 m spacing, 2 m crest to trough, crests running north–south.
+        let mut l = layers(1);
+        for row in 0..100 {
+            for col in 0..100 {
+                let h = 10.0 + (std::f64::consts::TAU * col as f64 / 20.0).cos();
+                l.dem.set(col, row, h as f32);
+            }
+        }
+        let (mut crest_loose, mut trough_loose, mut n) = (0.0, 0.0, 0.0);
+        for k in 0..40 {
+            let y = 20.0 + f64::from(k) * 1.5;
+            let c = sand_cover(&l.dem, 5, 40.5, y, 11.0);
+            let t = sand_cover(&l.dem, 5, 50.5, y, 9.0);
+            for v in [c, t] {
+                assert!(
+                    (v.loose + v.coarse + v.bedrock - 1.0).abs() < 1e-12,
+                    "{v:?}"
+                );
+                assert!(
+                    v.loose >= 0.0 && v.coarse >= 0.0 && v.bedrock >= 0.0,
+                    "{v:?}"
+                );
+            }
+            crest_loose += c.loose;
+            trough_loose += t.loose;
+            n += 1.0;
+        }
+        assert!(
+            crest_loose / n > 0.8 && trough_loose / n < 0.2,
+            "{crest_loose} {trough_loose}"
+        );
+    }
+
+    #[test]
+    fn ripples_are_not_periodic() {
+        // A perfectly periodic train repeats exactly one wavelength across its crests; the
+        // warped, blended trains do not.
+        let across = (110.0f64).to_radians();
+        let (ax, ay) = (across.sin(), across.cos());
+        let (mut diff, mut power) = (0.0, 0.0);
+        for i in 0..4000 {
+            let (x, y) = (f64::from(i % 200) * 0.37, f64::from(i / 200) * 2.3);
+            let h = ripple_height_m(x, y, 0.0);
+            let h1 = ripple_height_m(
+                x + RIPPLE_WAVELENGTH_M * ax,
+                y + RIPPLE_WAVELENGTH_M * ay,
+                0.0,
+            );
+            diff += (h - h1).powi(2);
+            power += h * h;
+            assert!(h.abs() <= 1.8 * RIPPLE_AMPLITUDE_M, "{h}");
+        }
+        assert!(diff / power > 0.3, "{}", diff / power);
+        // Migration moves the pattern.
+        assert!(ripple_height_m(3.1, 7.9, 0.75) != ripple_height_m(3.1, 7.9, 0.0));
     }
 
     #[test]

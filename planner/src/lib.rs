@@ -1,0 +1,130 @@
+//! # planner — campaign intents and an anytime branch-and-bound activity scheduler
+//!
+//! Lays out one sol of rover activities under time, energy and data-volume limits so as to
+//! best satisfy the operators' campaign intents (paper 003 §2–§3). The crate knows
+//! activities and resources, not rovers.
+//!
+//! | Item | What it is |
+//! |---|---|
+//! | [`Problem`], [`Activity`], [`Drive`], [`Campaign`] | the serde (JSON) description of a sol |
+//! | [`Instance`] | a validated problem with drives split into [`Task`]s |
+//! | [`plan`], [`plan_from`] | branch and bound from the start of the sol, or from a [`State`] (replanning) |
+//! | [`SearchSettings`], [`BoundKind`] | budgets and the optimistic bound |
+//! | [`PlanOutcome`], [`Plan`], [`Value`] | the best plan, its lexicographic value, the best bound and the gap |
+//! | [`validate_plan`] | an independent checker listing every [`Violation`] |
+//! | [`repair`], [`RepairOutcome`], [`Blocker`] | shift a plan after a slip, or say why a replan is needed |
+//! | [`periodic_instances`], [`state_based_instances`] | build periodic and state-based campaign instances |
+//! | [`generate`] | seeded random instances |
+//! | [`optimistic_bound`] | the bound the search prunes with, for tests and comparison |
+//!
+//! ```
+//! use planner::{Activity, Problem, SearchSettings, State, Instance, plan, validate_plan};
+//!
+//! let mut comm = Activity::task("relay", 600, [43_200, 43_200], 10.0, 0.0);
+//! comm.mandatory = true;
+//! comm.downlink_mb = 300.0;
+//! let mut pancam = Activity::task("pancam", 1_800, [36_000, 50_000], 30.0, 5.0);
+//! pancam.data_mb = 200.0;
+//! let problem = Problem {
+//!     start_s: 32_400,
+//!     end_s: 61_200,
+//!     battery_capacity_wh: 100.0,
+//!     initial_energy_wh: 60.0,
+//!     recharge_w: 5.0,
+//!     data_capacity_mb: 250.0,
+//!     initial_data_mb: 0.0,
+//!     activities: vec![comm, pancam, Activity::task("tau", 300, [36_000, 36_900], 8.0, 1.0)],
+//!     campaigns: vec![],
+//! };
+//! let outcome = plan(&problem, &SearchSettings::default())?;
+//! assert!(outcome.is_proven_optimal());
+//! assert_eq!(outcome.value.points(1), 6.0);
+//! let instance = Instance::new(&problem)?;
+//! assert!(validate_plan(&instance, &State::initial(&instance), &outcome.plan).is_empty());
+//! # Ok::<(), planner::PlanError>(())
+//! ```
+//!
+//! ## What is modelled, what is simplified
+//!
+//! | Aspect | Modelled | Simplified / missing |
+//! |---|---|---|
+//! | Time | integer seconds after midnight; one activity at a time | no parallel activities |
+//! | Waiting | a task starts at the earliest second its window, its predecessor and the battery allow (waiting to recharge included); complete for this model, see [`State`] | — |
+//! | Energy | battery with capacity (recharge clipped), constant net recharge `recharge_w`, constant power per activity, never below 0 | no solar profile over the sol, no regenerative-sleep activity |
+//! | Data | produced at an activity's end, freed by downlinks (comm passes) | downlink at the pass's end, not during it |
+//! | Mandatory | tasks every plan must hold (comm passes at fixed times) | — |
+//! | Auxiliary | preconditions (heating before a drive) | no maximum gap between heating and use |
+//! | Drives | pre-split into `k` equal segments (or at given distances) run in order; utility per metre | split points fixed before search |
+//! | Goal set | utility by count with `min_count`, `max_count`, decay | utility does not depend on which members |
+//! | Periodic | instances at absolute due times ± tolerance | cadence not relative to the previous instance |
+//! | State-based | instances allowed only while metres driven ∈ `k·every ± tolerance` | — |
+//! | Tiers | lexicographic [`Value`] of exact integers per tier (up to 4 tiers) | — |
+//!
+//! ## The two optimistic bounds
+//! [`BoundKind::Knapsack`] (fractional knapsacks on time, energy and data, each alone but
+//! under nested deadline / release rows, and capped utility sums) and [`BoundKind::Lp`] (one clarabel LP over all three resources with
+//! deadline, release, precedence and campaign-cap rows, certified by weak duality so solver
+//! inaccuracy cannot make it inadmissible). Both are admissible: `tests/exhaustive.rs`
+//! checks every tier of each against the exhaustive optimum on ~1 200 random nodes (initial
+//! states and random partial plans of instances of ≤ 8 tasks). Measured with
+//! `examples/bound_compare.rs` (generated instances, wall clock via `Instant` summed over the
+//! search; release build on a loaded 2-core machine, so ratios matter more than absolute
+//! times) and `examples/plan_generated.rs`:
+//!
+//! | | Knapsack | LP |
+//! |---|---|---|
+//! | mean excess over the optimum at random nodes, ≤ 8 tasks (points, all tiers) | 5.1 | 4.3 |
+//! | root excess over the best value found, 8 / 16 / 25 optional activities (points) | 16.2 / 28.9 / 44.2 | 13.8 / 26.3 / 35.8 |
+//! | one root evaluation, 8 / 16 / 25 optional | 3 / 8 / 19 µs | 0.46 / 1.4 / 2.7 ms |
+//! | search time per expanded node, 8 / 16 / 25 optional | 6 / 8 / 12 µs | 150 / 180 / 270 µs |
+//! | mean nodes to prove optimality, 8 / 16 optional | 49 / 3 663 | 44 / 3 302 |
+//! | 86-task instance (80 optional, seed 80): tier-1 gap | 12.8 after 20 000 nodes (3.7 s) | 6.2 after 200 nodes (5.0 s, `Both`) |
+//!
+//! The LP is never looser (it holds each knapsack's constraint plus window rows the
+//! knapsacks lack) and costs 20–200× more per evaluation. On small instances its extra
+//! pruning saves only ~10 % of the nodes; on large ones its deadline rows halve the proven
+//! gap at equal wall time. [`BoundKind::Both`] (the default) tries the knapsack first and
+//! solves LPs only for nodes it cannot prune, tier by tier until the lexicographic
+//! comparison is decided — so lower tiers of the reported `best_bound` can stay loose when a
+//! higher tier decides. For the most nodes per second choose [`BoundKind::Knapsack`].
+//!
+//! The table above predates the B6 work (2026-11-25), which gave the knapsack bound nested
+//! deadline and release rows, rounding to the utility grain (whole points), a Lagrangian
+//! coupling of tied tiers and precomputed density orders. On the B6 instances
+//! ([`b6_problem`], 20/40/80 optional activities) `Knapsack` now proves optimality in
+//! milliseconds to about 1.3 s, while `Both` expands 1–45 % fewer nodes but spends 10–30× the
+//! time in LPs; BENCHMARKS.md, "Activity planner (B6)", compares it with OR-Tools CP-SAT.
+//!
+//! ## References
+//! Paper 003 §2 (architecture: goal planner, executive), §3 (campaign intent, Fig. 2),
+//! §3.1 (branch and bound, anytime, repair, Fig. 3), §5 (illustrative scenario: replanning
+//! after new goals and drive delays).
+#![warn(missing_docs)]
+
+mod bound;
+mod bound_lp;
+mod campaign;
+mod error;
+mod generate;
+mod instance;
+mod instance_checks;
+mod plan;
+mod problem;
+mod repair;
+mod search;
+mod state;
+mod validate;
+mod value;
+
+pub use bound::optimistic_bound;
+pub use campaign::{periodic_instances, state_based_instances};
+pub use error::PlanError;
+pub use generate::{GeneratorSettings, b6_problem, generate};
+pub use instance::{CampaignCurve, Instance, Task, TaskId};
+pub use plan::{BoundKind, Plan, PlanOutcome, PlanStatus, PlanStep, SearchSettings, SearchStats};
+pub use problem::{Activity, ActivityKind, Campaign, CampaignIntent, Drive, Problem};
+pub use repair::{RepairOutcome, repair};
+pub use search::{plan, plan_from};
+pub use state::{Blocker, DATA_EPS_MB, DISTANCE_EPS_M, ENERGY_EPS_WH, State};
+pub use validate::{Violation, validate_plan};
+pub use value::{MAX_TASKS, MAX_TIERS, MAX_UTILITY, MICRO_PER_POINT, Value};

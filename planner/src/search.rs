@@ -1,0 +1,330 @@
+//! Anytime branch and bound forward in time (paper 003 §3.1).
+//!
+//! A node is a partial plan; it is expanded by appending, one at a time, every task that can
+//! follow it, each started as early as possible (see [`state`](crate::State) for why that is
+//! complete). A child is kept only if its optimistic bound (see [`BoundKind`]) beats the
+//! incumbent, the best plan found so far. Expanded nodes are also completed greedily (each of
+//! the first 256, then every 16th), and that pessimistic completion becomes the incumbent
+//! when it is better. Children are pushed
+//! best-last onto a stack, so the search dives depth-first; every
+//! [`resort_every`](SearchSettings::resort_every) expansions the whole frontier is sorted by
+//! bound, the hybrid depth-first / best-first order of the paper. Stopped by a budget, it
+//! returns the incumbent with the best bound over the frontier, an honest optimality gap.
+//!
+//! A child that reaches the same set of done tasks as an earlier node, but no earlier, with
+//! no more energy and no less data, is dropped as dominated (a memo keyed by the done set
+//! keeps the Pareto front; see [`SearchSettings::dominance`]).
+//!
+//! With only a node budget the result is a deterministic function of the input: ties are
+//! broken by task id and node creation order, never by time or hash order.
+//!
+//! ## References
+//! Paper 003 §3.1, "Using Campaign Intent to Guide Planning".
+
+use crate::bound::Bounder;
+use crate::error::PlanError;
+use crate::instance::{Instance, TaskId};
+use crate::plan::{Plan, PlanOutcome, PlanStatus, PlanStep, SearchSettings, SearchStats};
+use crate::problem::Problem;
+use crate::state::{Cursor, State, TaskSet};
+use crate::value::{MAX_TIERS, Value};
+use std::collections::HashMap;
+use std::time::Instant;
+
+/// Every expanded node is completed greedily up to this many expansions ...
+const GREEDY_EVERY_NODE_UNTIL: u64 = 256;
+/// ... and after that every this many.
+const GREEDY_EVERY: u64 = 16;
+
+/// Most (time, energy, data) entries the dominance memo keeps before it stops growing.
+const MAX_MEMO_ENTRIES: usize = 1 << 20;
+
+/// Plan `problem` from the start of its window.
+///
+/// # Errors
+/// A [`PlanError`] if the problem is malformed. A problem whose mandatory activities cannot
+/// all fit is not an error: the outcome's status is [`PlanStatus::Infeasible`].
+pub fn plan(problem: &Problem, settings: &SearchSettings) -> Result<PlanOutcome, PlanError> {
+    let inst = Instance::new(problem)?;
+    plan_from(&inst, &State::initial(&inst), settings)
+}
+
+/// Plan (or replan) `instance` from `state`: the time, energy, data and metres now, and the
+/// tasks already done.
+///
+/// # Errors
+/// [`PlanError::InvalidState`] if `state` is malformed.
+pub fn plan_from(
+    instance: &Instance,
+    state: &State,
+    settings: &SearchSettings,
+) -> Result<PlanOutcome, PlanError> {
+    let root = Cursor::new(instance, state)?;
+    Ok(Search::new(instance, settings).run(root))
+}
+
+#[derive(Clone)]
+struct Node {
+    cur: Cursor,
+    steps: Vec<PlanStep>,
+    bound: Value,
+    /// Creation order, the deterministic tie-break.
+    serial: u64,
+}
+
+struct Search<'a> {
+    inst: &'a Instance,
+    settings: &'a SearchSettings,
+    bounder: Bounder<'a>,
+    stats: SearchStats,
+    best: Option<(Value, Vec<PlanStep>)>,
+    serial: u64,
+    /// Per set of done tasks, the Pareto front of (end time, energy, data) reached so far.
+    memo: HashMap<TaskSet, Vec<(i64, f64, f64)>>,
+    memo_entries: usize,
+}
+
+impl<'a> Search<'a> {
+    fn new(inst: &'a Instance, settings: &'a SearchSettings) -> Self {
+        Self {
+            inst,
+            settings,
+            bounder: Bounder::new(inst, settings.bound),
+            stats: SearchStats::default(),
+            best: None,
+            serial: 0,
+            memo: HashMap::new(),
+            memo_entries: 0,
+        }
+    }
+
+    /// Whether a node already reached the same done set no later, with no less energy and
+    /// no more data. Such a node can run every completion of `cur` (idle until `cur`'s time,
+    /// then follow it) and has the same value, so `cur` is redundant. Records `cur`
+    /// otherwise.
+    fn dominated(&mut self, cur: &Cursor) -> bool {
+        if !self.settings.dominance {
+            return false;
+        }
+        let key = (cur.time_s, cur.energy_wh, cur.data_mb);
+        let le = |a: &(i64, f64, f64), b: &(i64, f64, f64)| a.0 <= b.0 && a.1 >= b.1 && a.2 <= b.2;
+        match self.memo.get_mut(&cur.done) {
+            Some(front) => {
+                if front.iter().any(|e| le(e, &key)) {
+                    return true;
+                }
+                let before = front.len();
+                front.retain(|e| !le(&key, e));
+                self.memo_entries -= before - front.len();
+                if self.memo_entries < MAX_MEMO_ENTRIES {
+                    front.push(key);
+                    self.memo_entries += 1;
+                }
+            }
+            None => {
+                if self.memo_entries < MAX_MEMO_ENTRIES {
+                    self.memo.insert(cur.done.clone(), vec![key]);
+                    self.memo_entries += 1;
+                }
+            }
+        }
+        false
+    }
+
+    fn incumbent(&self) -> Option<Value> {
+        self.best.as_ref().map(|b| b.0)
+    }
+
+    fn offer(&mut self, cur: &Cursor, steps: &[PlanStep]) {
+        if cur.mandatory_left == 0 && self.incumbent().is_none_or(|v| cur.value > v) {
+            self.best = Some((cur.value, steps.to_vec()));
+        }
+    }
+
+    fn run(mut self, root: Cursor) -> PlanOutcome {
+        let clock = Instant::now();
+        let mut frontier: Vec<Node> = Vec::new();
+        self.offer(&root, &[]);
+        self.greedy(&root, &[]);
+        if let Some(bound) = self
+            .bounder
+            .evaluate(&root, self.incumbent(), &mut self.stats)
+        {
+            frontier.push(Node {
+                cur: root.clone(),
+                steps: Vec::new(),
+                bound,
+                serial: 0,
+            });
+        }
+        let mut exhausted = true;
+        while let Some(node) = frontier.pop() {
+            if self.incumbent().is_some_and(|v| node.bound <= v) {
+                self.stats.nodes_pruned += 1;
+                continue;
+            }
+            let over_nodes = self
+                .settings
+                .node_budget
+                .is_some_and(|b| self.stats.nodes_expanded >= b);
+            let over_time = self
+                .settings
+                .time_budget
+                .is_some_and(|b| clock.elapsed() >= b);
+            if over_nodes || over_time {
+                frontier.push(node);
+                exhausted = false;
+                break;
+            }
+            self.stats.nodes_expanded += 1;
+            // Greedy completions pay early (anytime incumbents); later the dive finds the
+            // incumbents and a completion per node would cost ~20 % of the search for nothing.
+            let e = self.stats.nodes_expanded;
+            if e > 1 && (e <= GREEDY_EVERY_NODE_UNTIL || e.is_multiple_of(GREEDY_EVERY)) {
+                self.greedy(&node.cur, &node.steps);
+            }
+            let mut children = self.expand(&node);
+            // Best child last, so the dive continues with it.
+            children.sort_by(|a, b| a.bound.cmp(&b.bound).then(b.serial.cmp(&a.serial)));
+            frontier.extend(children);
+            if self
+                .stats
+                .nodes_expanded
+                .is_multiple_of(self.settings.resort_every.max(1))
+            {
+                frontier.sort_by(|a, b| a.bound.cmp(&b.bound).then(b.serial.cmp(&a.serial)));
+            }
+        }
+        let incumbent = self.incumbent();
+        let frontier_bound = frontier
+            .iter()
+            .filter(|n| incumbent.is_none_or(|v| n.bound > v))
+            .map(|n| n.bound)
+            .max();
+        self.stats.total_time = clock.elapsed();
+        let (status, value, steps) = match self.best.take() {
+            Some((v, s)) => (
+                if exhausted || frontier_bound.is_none() {
+                    PlanStatus::Optimal
+                } else {
+                    PlanStatus::Feasible
+                },
+                v,
+                s,
+            ),
+            None => (
+                if exhausted || frontier_bound.is_none() {
+                    PlanStatus::Infeasible
+                } else {
+                    PlanStatus::NoPlanFound
+                },
+                root.value,
+                Vec::new(),
+            ),
+        };
+        let best_bound = match (status, frontier_bound) {
+            (PlanStatus::Optimal, _) | (_, None) => value,
+            (_, Some(b)) => b.max(value),
+        };
+        PlanOutcome {
+            status,
+            plan: Plan { steps },
+            value,
+            best_bound,
+            stats: self.stats,
+        }
+    }
+
+    /// Children of `node` that survive the bound; complete ones are offered as incumbents.
+    fn expand(&mut self, node: &Node) -> Vec<Node> {
+        let mut children = Vec::new();
+        for i in 0..self.inst.tasks().len() {
+            let t = TaskId(i as u32);
+            let Some(start) = node.cur.earliest_start(self.inst, t) else {
+                continue;
+            };
+            let mut cur = node.cur.clone();
+            cur.append(self.inst, t, start, None);
+            let mut steps = node.steps.clone();
+            steps.push(PlanStep {
+                task: t,
+                start_s: start,
+                end_s: cur.time_s,
+            });
+            self.stats.nodes_generated += 1;
+            self.offer(&cur, &steps);
+            if self.dominated(&cur) {
+                self.stats.nodes_dominated += 1;
+                continue;
+            }
+            match self
+                .bounder
+                .evaluate(&cur, self.incumbent(), &mut self.stats)
+            {
+                Some(bound) => {
+                    self.serial += 1;
+                    children.push(Node {
+                        cur,
+                        steps,
+                        bound,
+                        serial: self.serial,
+                    });
+                }
+                None => self.stats.nodes_pruned += 1,
+            }
+        }
+        children
+    }
+
+    /// Pessimistic completions of `cur`: two greedy rules, each appending the best next task
+    /// until none fits. The better complete one is offered as an incumbent.
+    fn greedy(&mut self, start: &Cursor, prefix: &[PlanStep]) {
+        for mandatory_first in [false, true] {
+            let mut cur = start.clone();
+            let mut steps = prefix.to_vec();
+            loop {
+                let mut pick: Option<(Key, TaskId, i64)> = None;
+                for i in 0..self.inst.tasks().len() {
+                    let t = TaskId(i as u32);
+                    let Some(s) = cur.earliest_start(self.inst, t) else {
+                        continue;
+                    };
+                    let key = greedy_key(self.inst, &cur, t, s, mandatory_first);
+                    if pick.as_ref().is_none_or(|(k, _, _)| key > *k) {
+                        pick = Some((key, t, s));
+                    }
+                }
+                let Some((_, t, s)) = pick else { break };
+                cur.append(self.inst, t, s, None);
+                steps.push(PlanStep {
+                    task: t,
+                    start_s: s,
+                    end_s: cur.time_s,
+                });
+            }
+            self.offer(&cur, &steps);
+        }
+    }
+}
+
+/// Greedy preference: (mandatory first?, utility rate per tier, earlier end). Larger is
+/// better; compared lexicographically.
+type Key = (bool, [i64; MAX_TIERS], i64);
+
+fn greedy_key(inst: &Instance, cur: &Cursor, t: TaskId, start: i64, mandatory_first: bool) -> Key {
+    let task = inst.task(t);
+    let mut gain = [0.0f64; MAX_TIERS];
+    gain[task.tier] += task.utility_micro as f64;
+    if let Some(c) = task.campaign {
+        let curve = &inst.campaigns()[c];
+        gain[curve.tier] += curve.optimistic_slope(cur.counts[c]);
+    }
+    // Utility per hour of sol used, waiting included.
+    let used_h = ((start + task.duration_s - cur.time_s).max(1)) as f64 / 3600.0;
+    let rate = gain.map(|g| (g / used_h) as i64);
+    (
+        mandatory_first && task.mandatory,
+        rate,
+        -(start + task.duration_s),
+    )
+}
