@@ -61,6 +61,15 @@ fn every_drive_sol_of_the_rapid_traverse_has_a_valid_plan_with_the_chain_under_o
             );
             assert!(plan.timeline.iter().all(|t| t.energy_wh_after >= 0.0));
             if strategy.onboard_localization() {
+                // The localization in the sol log starts when the plan starts the transfer.
+                let transfer = &plan.timeline[at("hbs_transfer").expect("transfer")];
+                let event = sol.onboard_localization.as_ref().expect("onboard event");
+                assert_eq!(
+                    event.start_lmst.as_deref(),
+                    Some(transfer.start_lmst.as_str()),
+                    "sol {}",
+                    sol.sol
+                );
                 let mut last = drive;
                 for step in LOCALIZATION_CHAIN {
                     let i = at(step).unwrap_or_else(|| {

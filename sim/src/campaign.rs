@@ -420,9 +420,17 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
         record.truth_inside_disc = record.truth_error_m <= record.end_uncertainty_m + 1e-9;
 
         if record.drove && strategy.onboard_localization() {
-            // After the drive (and its post-drive imaging): MOB_WRITE_ONBD_INPUT_FILE → HBS run,
-            // reboot, run, compare → MOB_APPLY_ONBD_LOCALIZATION.
-            let start = SolSeconds(cal.drive_start.0 + record.drive_time_s.round() as u32);
+            // After the drive, its post-drive imaging and SunFind, when the sol's plan starts the
+            // transfer: MOB_WRITE_ONBD_INPUT_FILE → HBS run, reboot, run, compare →
+            // MOB_APPLY_ONBD_LOCALIZATION. Without a plan, right after the drive.
+            let planned_start = record
+                .activity_plan
+                .as_ref()
+                .and_then(|p| p.timeline.iter().find(|t| t.activity == "hbs_transfer"))
+                .map(|t| SolSeconds(t.start_s.max(0) as u32));
+            let start = planned_start.unwrap_or(SolSeconds(
+                cal.drive_start.0 + record.drive_time_s.round() as u32,
+            ));
             let event = match &c.localizer {
                 OnboardLocalizer::Statistical(model) => {
                     statistical_localization(model.localize(&mut rng), c, &mut state, start)
