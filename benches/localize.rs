@@ -26,12 +26,16 @@
 //!
 //! Threads: each figure runs inside a `rayon` pool of 1 or 2 threads (`install`).
 
+mod common;
+
+use common::write_npy;
 use std::path::Path;
 use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use localization::census::{CensusImage, census_transform, hamming_scores, hamming_scores_fft};
 use localization::matcher::{MatchParams, OrbitalMap, RoverImages, localize};
+use localization::synthetic::sinusoid_texture;
 use maps::{GeoTransform, Raster};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -75,23 +79,6 @@ fn b1_instance() -> (CensusImage, CensusImage) {
     let template = census_transform(&patch, &template_validity(SEED_B1 + 1), T, T);
     let map = census_transform(&map, &vec![true; M * M], M, M);
     (template, map)
-}
-
-/// Writes a 2-D array as a NumPy `.npy` file (format 1.0).
-fn write_npy(path: &Path, descr: &str, rows: usize, cols: usize, data: &[u8]) {
-    let mut header =
-        format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': ({rows}, {cols}), }}");
-    // Magic (6) + version (2) + length (2) + header + '\n' is a multiple of 64.
-    while (10 + header.len() + 1) % 64 != 0 {
-        header.push(' ');
-    }
-    header.push('\n');
-    let mut bytes = Vec::with_capacity(10 + header.len() + data.len());
-    bytes.extend_from_slice(b"\x93NUMPY\x01\x00");
-    bytes.extend_from_slice(&(header.len() as u16).to_le_bytes());
-    bytes.extend_from_slice(header.as_bytes());
-    bytes.extend_from_slice(data);
-    std::fs::write(path, bytes).unwrap_or_else(|e| panic!("writing {}: {e}", path.display()));
 }
 
 fn dump(dir: &Path, template: &CensusImage, map: &CensusImage, sums: (u64, u64)) {
@@ -168,31 +155,6 @@ fn bench_b1(c: &mut Criterion) {
     g.finish();
 }
 
-/// A smooth random texture (sum of seeded sinusoids), 0..255 (as in the matcher tests).
-fn texture(w: usize, h: usize, geo: GeoTransform, seed: u64) -> Raster<u8> {
-    let mut r = Raster::filled(w, h, geo, 0u8);
-    let mut s = seed;
-    let mut next = || {
-        s = s
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (s >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let waves: Vec<(f64, f64, f64)> = (0..24)
-        .map(|_| (next() * 1.2 - 0.6, next() * 1.2 - 0.6, next() * 6.3))
-        .collect();
-    for row in 0..h {
-        for col in 0..w {
-            let v: f64 = waves
-                .iter()
-                .map(|(a, b, ph)| (a * col as f64 + b * row as f64 + ph).sin())
-                .sum();
-            r.set(col, row, (128.0 + 20.0 * v).clamp(0.0, 255.0) as u8);
-        }
-    }
-    r
-}
-
 /// Crop `r` to `cols × rows` pixels starting at (`col0`, `row0`).
 fn crop<T: Copy>(r: &Raster<T>, col0: usize, row0: usize, cols: usize, rows: usize) -> Raster<T> {
     let mut data = Vec::with_capacity(cols * rows);
@@ -211,8 +173,8 @@ fn crop<T: Copy>(r: &Raster<T>, col0: usize, row0: usize, cols: usize, rows: usi
 
 fn bench_b2(c: &mut Criterion) {
     let geo = GeoTransform::new(0.0, 200.0, 0.25);
-    let map = texture(800, 800, geo, 11);
-    let dem_u8 = texture(200, 200, GeoTransform::new(0.0, 200.0, 1.0), 12);
+    let map = sinusoid_texture(800, 800, geo, 11);
+    let dem_u8 = sinusoid_texture(200, 200, GeoTransform::new(0.0, 200.0, 1.0), 12);
     let dem = Raster {
         data: dem_u8.data.iter().map(|&v| f32::from(v) / 20.0).collect(),
         width: dem_u8.width,

@@ -28,59 +28,15 @@ peers' JSON, and prints the ratio table (ours / peer; < 1 means we are faster).
 import argparse
 import json
 import os
-import platform
 import statistics
-import subprocess
 import sys
-import time
 from pathlib import Path
+
+from peer_common import cpu_model, ensure_venv, timed
 
 PEERS = Path(__file__).resolve().parent
 ROOT = PEERS.parent
-VENV = PEERS / ".venv"
 RADIUS_CELLS = 10.0
-
-
-def ensure_venv():
-    """Re-exec inside peers/.venv, creating it and installing requirements.txt as needed.
-
-    The venv is shared with other peer scripts, so the packages are probed, not assumed.
-    """
-    if Path(sys.prefix).resolve() == VENV.resolve():
-        return
-    py = VENV / "bin" / "python"
-    if not py.exists():
-        subprocess.run([sys.executable, "-m", "venv", str(VENV)], check=True)
-    probe = subprocess.run([str(py), "-c", "import cv2, numpy, scipy, pyastar2d"],
-                           capture_output=True)
-    if probe.returncode != 0:
-        print(f"installing {PEERS / 'requirements.txt'} into {VENV}", file=sys.stderr)
-        subprocess.run([str(py), "-m", "pip", "install", "-q", "-r",
-                        str(PEERS / "requirements.txt")], check=True, stdout=sys.stderr)
-    os.execv(str(py), [str(py), str(Path(__file__).resolve()), *sys.argv[1:]])
-
-
-def timed(fn, runs):
-    """(last result, stats in ms) of `runs` timed calls after one warm-up call."""
-    result = fn()
-    times = []
-    for _ in range(runs):
-        t0 = time.perf_counter()
-        result = fn()
-        times.append((time.perf_counter() - t0) * 1e3)
-    return result, {"median_ms": statistics.median(times), "min_ms": min(times),
-                    "max_ms": max(times), "runs": runs}
-
-
-def cpu_model():
-    try:
-        out = subprocess.run(["lscpu"], capture_output=True, text=True, check=True).stdout
-        for line in out.splitlines():
-            if line.startswith("Model name"):
-                return line.split(":", 1)[1].strip()
-    except (OSError, subprocess.CalledProcessError):
-        pass
-    return platform.processor()
 
 
 def sizes_in(grids):
@@ -88,7 +44,7 @@ def sizes_in(grids):
 
 
 def run_peers(args):
-    ensure_venv()
+    ensure_venv("cv2, numpy, scipy, pyastar2d")
     import cv2
     import numpy as np
     import pyastar2d

@@ -39,26 +39,8 @@ import statistics
 import sys
 import time
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-VENV_PY = os.path.join(HERE, ".venv", "bin", "python")
+from peer_common import ensure_venv
 
-
-def ensure_venv():
-    """Re-run in peers/.venv (installing requirements.txt there if ortools is missing)."""
-    try:
-        import ortools  # noqa: F401
-        return
-    except ImportError:
-        pass
-    if os.path.abspath(sys.executable) == os.path.abspath(VENV_PY):
-        import subprocess
-        subprocess.check_call([VENV_PY, "-m", "pip", "install", "-q", "-r",
-                               os.path.join(HERE, "requirements.txt")])
-        return
-    if not os.path.exists(VENV_PY):
-        import subprocess
-        subprocess.check_call([sys.executable, "-m", "venv", os.path.join(HERE, ".venv")])
-    os.execv(VENV_PY, [VENV_PY] + sys.argv)
 
 
 SCALE_T = 16  # energy scale: units of 1/57600 Wh = 1/16 W*s
@@ -295,7 +277,7 @@ def main():
     if args.cmd == "report":
         report(args.peers, args.criterion)
         return
-    ensure_venv()
+    ensure_venv("ortools")
     results = []
     bad = 0
     for path in [f for f in args.files if not f.endswith(".planner.json")]:

@@ -595,21 +595,8 @@ mod tests {
 
     /// A smooth random texture (sum of seeded sinusoids), 0..255, row-major.
     fn texture(w: usize, h: usize, seed: u64) -> Vec<u8> {
-        let mut next = lcg(seed);
-        let waves: Vec<(f64, f64, f64)> = (0..24)
-            .map(|_| (next() * 1.2 - 0.6, next() * 1.2 - 0.6, next() * 6.3))
-            .collect();
-        let mut out = Vec::with_capacity(w * h);
-        for row in 0..h {
-            for col in 0..w {
-                let v: f64 = waves
-                    .iter()
-                    .map(|(a, b, ph)| (a * col as f64 + b * row as f64 + ph).sin())
-                    .sum();
-                out.push((128.0 + 20.0 * v).clamp(0.0, 255.0) as u8);
-            }
-        }
-        out
+        crate::synthetic::sinusoid_texture(w, h, maps::GeoTransform::new(0.0, h as f64, 1.0), seed)
+            .data
     }
 
     fn crop(map: &[u8], mw: usize, x0: usize, y0: usize, w: usize, h: usize) -> Vec<u8> {

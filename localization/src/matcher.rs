@@ -593,6 +593,7 @@ fn bilinear(g: &[f64], w: usize, h: usize, fx: f64, fy: f64) -> f64 {
 #[allow(clippy::unwrap_used)]
 mod tests {
     use super::*;
+    use crate::synthetic::sinusoid_texture;
 
     #[test]
     fn easting_scale_is_one_at_true_scale_and_grows_poleward() {
@@ -601,35 +602,10 @@ mod tests {
         assert!((easting_scale(60.0, 0.0) - 2.0).abs() < 1e-12);
     }
 
-    /// A smooth random texture (sum of seeded sinusoids), 0..255.
-    fn texture(w: usize, h: usize, geo: GeoTransform, seed: u64) -> Raster<u8> {
-        let mut r = Raster::filled(w, h, geo, 0u8);
-        let mut s = seed;
-        let mut next = || {
-            s = s
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        };
-        let waves: Vec<(f64, f64, f64)> = (0..24)
-            .map(|_| (next() * 1.2 - 0.6, next() * 1.2 - 0.6, next() * 6.3))
-            .collect();
-        for row in 0..h {
-            for col in 0..w {
-                let v: f64 = waves
-                    .iter()
-                    .map(|(a, b, ph)| (a * col as f64 + b * row as f64 + ph).sin())
-                    .sum();
-                r.set(col, row, (128.0 + 20.0 * v).clamp(0.0, 255.0) as u8);
-            }
-        }
-        r
-    }
-
     #[test]
     fn recovers_a_planted_offset_and_rejects_featureless_terrain() {
         let geo = GeoTransform::new(0.0, 200.0, 0.25);
-        let map = texture(800, 800, geo, 7);
+        let map = sinusoid_texture(800, 800, geo, 7);
         // The rover is truly at (100, 90); the prior is 11.5 m east, 7.25 m south of it.
         let truth = [100.0, 90.0];
         let (tc, tr) = map.geo.pixel_of(truth[0], truth[1]);
@@ -686,7 +662,7 @@ mod tests {
     #[test]
     fn ncc_and_mi_recover_a_planted_offset() {
         let geo = GeoTransform::new(0.0, 200.0, 0.25);
-        let map = texture(800, 800, geo, 7);
+        let map = sinusoid_texture(800, 800, geo, 7);
         let truth = [100.0, 90.0];
         let (tc, tr) = map.geo.pixel_of(truth[0], truth[1]);
         let mut ortho = crop(&map, tc as usize - 120, tr as usize - 120, 240, 240);
@@ -731,9 +707,9 @@ mod tests {
     #[test]
     fn dem_term_keeps_the_planted_offset() {
         let geo = GeoTransform::new(0.0, 200.0, 0.25);
-        let map = texture(800, 800, geo, 11);
+        let map = sinusoid_texture(800, 800, geo, 11);
         // Orbital DEM at 1 m: heights from another texture (metres, ~±2 m).
-        let dem_u8 = texture(200, 200, GeoTransform::new(0.0, 200.0, 1.0), 12);
+        let dem_u8 = sinusoid_texture(200, 200, GeoTransform::new(0.0, 200.0, 1.0), 12);
         let dem = Raster {
             data: dem_u8.data.iter().map(|&v| f32::from(v) / 20.0).collect(),
             width: dem_u8.width,
@@ -773,7 +749,7 @@ mod tests {
     #[test]
     fn bad_inputs_are_errors() {
         let geo = GeoTransform::new(0.0, 150.0, 0.25);
-        let map = texture(600, 600, geo, 1);
+        let map = sinusoid_texture(600, 600, geo, 1);
         let ortho = crop(&map, 0, 0, 240, 240);
         let valid = vec![true; 240 * 240];
         let orbital = OrbitalMap {

@@ -328,8 +328,14 @@ fn hbs_algorithm(files: &[HbsFile], geos: &[GeoTransform; 4], params: &MatchPara
         )
         .map_err(|e| e.to_string())
     };
-    match run() {
-        Ok(m) => result_file(&m),
+    result_bytes(&run())
+}
+
+/// The result file of a matcher outcome (an error is a result file too, which the rover's
+/// validity check refuses).
+fn result_bytes(outcome: &Result<MatchResult, String>) -> Vec<u8> {
+    match outcome {
+        Ok(m) => result_file(m),
         Err(e) => format!("verdict=ERROR: {e}\n").into_bytes(),
     }
 }
@@ -409,9 +415,9 @@ pub fn run_onboard(layers: &MapLayers, req: &OnboardRequest, s: &OnboardSettings
         ),
     ];
     run.input_bytes = inputs.iter().map(|f| f.bytes.len()).sum();
-    let algorithm = |files: &[HbsFile]| hbs_algorithm(files, &geos, &params);
-    // The fault-free result, for diagnostics.
-    run.matched = localize(
+    // The fault-free run, once. The matcher is deterministic, so an HBS run on intact inputs
+    // returns exactly these bytes; only a run on inputs an upset changed is computed again.
+    let fault_free = localize(
         &OrbitalMap {
             appearance: &orbital.appearance,
             dem: Some(&orbital.dem),
@@ -424,7 +430,21 @@ pub fn run_onboard(layers: &MapLayers, req: &OnboardRequest, s: &OnboardSettings
         req.prior_m,
         &params,
     )
-    .ok();
+    .map_err(|e| e.to_string());
+    let fault_free_bytes = result_bytes(&fault_free);
+    debug_assert_eq!(
+        hbs_algorithm(&inputs, &geos, &params),
+        fault_free_bytes,
+        "an HBS run on intact inputs must equal the fault-free run"
+    );
+    run.matched = fault_free.ok();
+    let algorithm = |files: &[HbsFile]| {
+        if files == inputs.as_slice() {
+            fault_free_bytes.clone()
+        } else {
+            hbs_algorithm(files, &geos, &params)
+        }
+    };
     let window_px = (2.0 * radius_m) / ORTHO_RESOLUTION_M_PER_PX + ORTHO_SIZE_PX as f64;
     let flight_window_px =
         (2.0 * FLIGHT_SEARCH_RADIUS_M) / ORTHO_RESOLUTION_M_PER_PX + ORTHO_SIZE_PX as f64;
@@ -535,6 +555,30 @@ mod tests {
             &OnboardSettings::default(),
         );
         assert_eq!(again, run);
+    }
+
+    #[test]
+    fn upsets_never_apply_a_result_other_than_the_fault_free_one() {
+        let maps = BenchmarkMaps::generate(1);
+        let layers = maps.get(TerrainKind::Rocky);
+        let mut settings = OnboardSettings::default();
+        settings.hbs.p_flip_memory = 1.0;
+        settings.hbs.p_flip_storage = 0.5;
+        for sol_seed in 0..6 {
+            let req = OnboardRequest {
+                sol_seed,
+                ..request([300.0, 310.0], [304.0, 306.0], 10.0)
+            };
+            let run = run_onboard(layers, &req, &settings);
+            assert!(!run.log.upsets.is_empty());
+            if let Some(fix) = run.applied {
+                let m = run.matched.as_ref().expect("fault-free result");
+                assert_eq!(fix.position_m[0].to_bits(), m.position_m[0].to_bits());
+                assert_eq!(fix.position_m[1].to_bits(), m.position_m[1].to_bits());
+            } else {
+                assert!(run.lost_reason.is_some());
+            }
+        }
     }
 
     #[test]

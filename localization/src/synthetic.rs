@@ -151,6 +151,39 @@ pub enum SyntheticError {
     },
 }
 
+/// A smooth random texture for tests and benchmarks of the matchers: the sum of 24 seeded
+/// plane sinusoids around grey 128, quantised to 0..255. No terrain, no sensor model; the same
+/// `seed` always gives the same image.
+#[must_use]
+pub fn sinusoid_texture(
+    width: usize,
+    height: usize,
+    geo: maps::GeoTransform,
+    seed: u64,
+) -> maps::Raster<u8> {
+    let mut s = seed;
+    let mut next = || {
+        s = s
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (s >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let waves: Vec<(f64, f64, f64)> = (0..24)
+        .map(|_| (next() * 1.2 - 0.6, next() * 1.2 - 0.6, next() * 6.3))
+        .collect();
+    let mut r = maps::Raster::filled(width, height, geo, 0u8);
+    for row in 0..height {
+        for col in 0..width {
+            let v: f64 = waves
+                .iter()
+                .map(|(a, b, ph)| (a * col as f64 + b * row as f64 + ph).sin())
+                .sum();
+            r.set(col, row, (128.0 + 20.0 * v).clamp(0.0, 255.0) as u8);
+        }
+    }
+    r
+}
+
 /// `Ok` if `ok(value)`, else [`SyntheticError::InvalidParameter`].
 fn check_param(
     field: &'static str,

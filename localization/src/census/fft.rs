@@ -45,7 +45,7 @@ use rustfft::{Fft, FftPlanner};
 
 use super::MatchError;
 use super::score::ScoreMap;
-use super::transform::{CensusImage, Which};
+use super::transform::CensusImage;
 
 /// Census bits per pixel.
 const BITS: usize = 8;
@@ -621,26 +621,7 @@ pub fn hamming_scores_fft(
     template: &CensusImage,
     map: &CensusImage,
 ) -> Result<ScoreMap, MatchError> {
-    template.check(Which::Template)?;
-    map.check(Which::Map)?;
-    if template.width == 0 || template.height == 0 {
-        return Err(MatchError::EmptyTemplate {
-            width: template.width,
-            height: template.height,
-        });
-    }
-    if template.width > map.width || template.height > map.height {
-        return Err(MatchError::TemplateLargerThanMap {
-            template_width: template.width,
-            template_height: template.height,
-            map_width: map.width,
-            map_height: map.height,
-        });
-    }
-    let (ow, oh) = (
-        map.width - template.width + 1,
-        map.height - template.height + 1,
-    );
+    let (ow, oh) = super::score::offsets(template, map)?;
     let p = Plans::get(fft_size(map.width), fft_size(map.height));
     let holes = Holes::of(map);
     // The fast path when its exact corrections cost little next to the transforms it saves.

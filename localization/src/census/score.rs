@@ -92,7 +92,10 @@ impl ScoreMap {
 }
 
 /// Validate the pair and return the score-map size.
-fn offsets(template: &CensusImage, map: &CensusImage) -> Result<(usize, usize), MatchError> {
+pub(super) fn offsets(
+    template: &CensusImage,
+    map: &CensusImage,
+) -> Result<(usize, usize), MatchError> {
     template.check(Which::Template)?;
     map.check(Which::Map)?;
     if template.width == 0 || template.height == 0 {
