@@ -23,6 +23,8 @@ mod campaign_entry;
 pub mod campaign_file;
 mod check;
 mod raw;
+pub mod science_section;
+pub use raw::RawScience;
 mod report_format;
 
 pub use report_format::{report_json, report_table, status_text};

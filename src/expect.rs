@@ -49,6 +49,16 @@ pub struct RawExpectation {
     max_uncertainty_m: Option<[f64; 2]>,
     goal_sooner_than: Option<RawSooner>,
     covers: Option<RawCovers>,
+    plan_violations: Option<[u32; 2]>,
+    science: Option<RawScience>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawScience {
+    campaign: String,
+    done: Option<[u32; 2]>,
+    failed: Option<[u32; 2]>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -100,6 +110,17 @@ pub enum Check {
         /// Bounds.
         hi: u32,
     },
+    /// A science campaign's members done (or failed) over the run, within `[lo, hi]`.
+    Science {
+        /// Campaign id.
+        campaign: String,
+        /// `done` or `failed`.
+        what: &'static str,
+        /// Bounds.
+        lo: u32,
+        /// Bounds.
+        hi: u32,
+    },
 }
 
 /// A validated `[[expect]]` entry.
@@ -124,6 +145,7 @@ impl RawExpectation {
         path: &Path,
         index: usize,
         calendar: &Calendar,
+        campaign_ids: &[&str],
     ) -> Result<Expectation, ScenarioError> {
         let f = |name: &str| format!("expect[{index}].{name}");
         let names = Strategy::ALL.map(Strategy::name).join(", ");
@@ -183,10 +205,11 @@ impl RawExpectation {
             ("total_distance_m", self.total_distance_m),
             ("max_uncertainty_m", self.max_uncertainty_m),
         ];
-        let int_ranges: [(&'static str, Option<[u32; 2]>); 3] = [
+        let int_ranges: [(&'static str, Option<[u32; 2]>); 4] = [
             ("no_path_faults", self.no_path_faults),
             ("faults", self.faults),
             ("sols_to_goal", self.sols_to_goal),
+            ("plan_violations", self.plan_violations),
         ];
         for (quantity, r) in ranges.into_iter().chain(
             int_ranges
@@ -237,6 +260,37 @@ impl RawExpectation {
                 lo: cv.sols[0],
                 hi: cv.sols[1],
             });
+        }
+        if let Some(sc) = self.science {
+            if !campaign_ids.contains(&sc.campaign.as_str()) {
+                return Err(ScenarioError::field(
+                    path,
+                    f("science.campaign"),
+                    format!(
+                        "the id of a [[science.campaigns]] entry ({})",
+                        campaign_ids.join(", ")
+                    ),
+                    format!("{:?}", sc.campaign),
+                ));
+            }
+            for (what, r) in [("done", sc.done), ("failed", sc.failed)] {
+                if let Some([lo, hi]) = r {
+                    if lo > hi {
+                        return Err(ScenarioError::field(
+                            path,
+                            f(&format!("science.{what}")),
+                            "a range [low, high] with low ≤ high",
+                            format!("[{lo}, {hi}]"),
+                        ));
+                    }
+                    checks.push(Check::Science {
+                        campaign: sc.campaign.clone(),
+                        what,
+                        lo,
+                        hi,
+                    });
+                }
+            }
         }
         if checks.is_empty() {
             return Err(ScenarioError::field(
@@ -320,6 +374,13 @@ impl Expectation {
                         "no_path_faults" => Some(f64::from(run.totals.no_path_faults)),
                         "faults" => Some(f64::from(run.totals.faults)),
                         "sols_to_goal" => run.totals.sols_to_goal.map(f64::from),
+                        "plan_violations" => Some(
+                            run.sols
+                                .iter()
+                                .filter_map(|r| r.activity_plan.as_ref())
+                                .map(|p| p.violations.len() as f64)
+                                .sum(),
+                        ),
                         _ => None,
                     };
                     if !got.is_some_and(|g| g >= *lo - 1e-9 && g <= *hi + 1e-9) {
@@ -356,6 +417,24 @@ impl Expectation {
                                 theirs.map_or("never".into(), |t| t.to_string())
                             ),
                             got: mine.map_or("goal not reached".into(), |m| m.to_string()),
+                        });
+                    }
+                }
+                Check::Science {
+                    campaign,
+                    what,
+                    lo,
+                    hi,
+                } => {
+                    let got = run.totals.science.get(campaign).map(|t| match *what {
+                        "failed" => t.failed,
+                        _ => t.done,
+                    });
+                    if !got.is_some_and(|g| g >= *lo && g <= *hi) {
+                        out.push(Mismatch {
+                            check: label(&format!("science {campaign} {what}")),
+                            expected: format!("[{lo}, {hi}]"),
+                            got: got.map_or("no such campaign".into(), |g| g.to_string()),
                         });
                     }
                 }

@@ -290,6 +290,14 @@ pub fn sol_table(outcome: &CampaignOutcome) -> String {
         t.onboard_localizations_rejected,
         t.truth_outside_disc
     );
+    if !t.science.is_empty() {
+        let tally: Vec<String> = t
+            .science
+            .iter()
+            .map(|(c, n)| format!("{c} {} done, {} failed", n.done, n.failed))
+            .collect();
+        let _ = writeln!(s, "science: {}", tally.join("; "));
+    }
     s
 }
 
@@ -336,5 +344,38 @@ pub fn compare_table(outcomes: &[CampaignOutcome]) -> String {
             t.ground_localizations
         );
     }
+    science_table(outcomes, &mut s);
     s
+}
+
+/// Science campaigns side by side (`done/failed` per campaign), if the scenario has any.
+fn science_table(outcomes: &[CampaignOutcome], s: &mut String) {
+    let Some(first) = outcomes.iter().find(|o| !o.totals.science.is_empty()) else {
+        return;
+    };
+    let campaigns: Vec<&String> = first.totals.science.keys().collect();
+    let _ = write!(
+        s,
+        "\nscience campaigns, members done/failed:\n{:<18}",
+        "strategy"
+    );
+    for c in &campaigns {
+        let _ = write!(s, "  {c:>12}");
+    }
+    let _ = writeln!(s, "  {:>16}", "plan_replans");
+    for o in outcomes {
+        let _ = write!(s, "{:<18}", o.strategy);
+        for c in &campaigns {
+            let n = o.totals.science.get(*c).copied().unwrap_or_default();
+            let _ = write!(s, "  {:>12}", format!("{}/{}", n.done, n.failed));
+        }
+        let replans = o
+            .sols
+            .iter()
+            .filter_map(|r| r.activity_plan.as_ref())
+            .flat_map(|p| &p.changes)
+            .filter(|c| c.ends_with("replanned"))
+            .count();
+        let _ = writeln!(s, "  {replans:>16}");
+    }
 }

@@ -555,6 +555,12 @@ impl Scenario {
                 ));
             }
         }
+        let science = crate::cmd_plan::science_section::resolve_science(
+            path,
+            &raw.science,
+            &|p| layers.dem.contains_point(p[0], p[1]),
+            &format!("x {x0:.1}..{x1:.1} m, y {y0:.1}..{y1:.1} m"),
+        )?;
         let grid = PlanningGrid::build(&zones, &layers, &grid_params);
         let post_drive_imaging_s = ops
             .post_drive_imaging_s
@@ -568,11 +574,12 @@ impl Scenario {
             }
         };
 
+        let campaign_ids: Vec<&str> = science.campaign_ids().collect();
         let expectations = raw
             .expect
             .into_iter()
             .enumerate()
-            .map(|(i, e)| e.resolve(path, i, &calendar))
+            .map(|(i, e)| e.resolve(path, i, &calendar, &campaign_ids))
             .collect::<Result<Vec<_>, _>>()?;
 
         Ok(Scenario {
@@ -596,6 +603,7 @@ impl Scenario {
                     imaging_s: i64::from(post_drive_imaging_s),
                     ..sim::sol_plan::SolPlanParams::default()
                 },
+                science,
             },
             expectations,
             notes,

@@ -121,7 +121,11 @@ fn fault_json_has_kind_after_and_uncertainty() {
 /// Same scenario and seed → byte-identical JSON, whatever the thread count.
 #[test]
 fn same_seed_gives_byte_identical_json_on_one_and_two_threads() {
-    for file in ["rapid-traverse-379-409.toml", "sol383-386.toml"] {
+    for file in [
+        "rapid-traverse-379-409.toml",
+        "sol383-386.toml",
+        "self-reliant-campaign.toml",
+    ] {
         let run = |threads: &str| {
             let o = solsim()
                 .env("RAYON_NUM_THREADS", threads)
@@ -499,4 +503,57 @@ fn seu_campaign_counts_and_never_applies_a_corrupted_result() {
         text.contains("corrupted results applied:        0"),
         "{text}"
     );
+}
+
+#[test]
+fn bad_science_sections_name_the_field() {
+    let cases: [(&str, &str, &[&str]); 7] = [
+        (
+            "position_m = [606.0, 574.0]",
+            "position_m = [5000.0, 574.0]",
+            &["science.targets[2].position_m", "a point on the map"],
+        ),
+        (
+            "revealed_lmst = \"15:30\"",
+            "",
+            &["science.targets[2].revealed_lmst", "with revealed_sol"],
+        ),
+        (
+            "duration_min = 15\npower_w = 35.0",
+            "duration_min = -15\npower_w = 35.0",
+            &["science.targets[0].duration_min", "positive"],
+        ),
+        (
+            "intent = \"goal_set\"",
+            "intent = \"goalset\"",
+            &["science.campaigns[0].intent", "goal_set"],
+        ),
+        (
+            "first_due_lmst = \"09:30\"",
+            "",
+            &["science.campaigns[1].first_due_lmst", "first due time"],
+        ),
+        (
+            "id = \"mastcam-start\"",
+            "id = \"drive\"",
+            &[
+                "science.targets[0].id",
+                "not used by the sol's own activities",
+            ],
+        ),
+        (
+            "science = { campaign = \"survey\"",
+            "science = { campaign = \"surveys\"",
+            &["expect[1].science.campaign", "\"surveys\""],
+        ),
+    ];
+    for (from, to, needles) in cases {
+        let (o, path, _d) = validate_modified("self-reliant-campaign.toml", |t| {
+            assert!(t.contains(from), "{from}");
+            t.replacen(from, to, 1)
+        });
+        let mut all = vec![path.to_str().expect("utf8")];
+        all.extend_from_slice(needles);
+        assert_bad_input(&o, &all);
+    }
 }

@@ -45,3 +45,8 @@ fn every_bundled_scenario_validates() {
         solsim::scenario::Scenario::load(&f).unwrap_or_else(|e| panic!("{e}"));
     }
 }
+
+#[test]
+fn self_reliant_campaign_science_and_replans() {
+    check("self-reliant-campaign.toml");
+}

@@ -86,3 +86,163 @@ fn every_drive_sol_of_the_rapid_traverse_has_a_valid_plan_with_the_chain_under_o
     }
     assert!(runs.contains_key(&Strategy::Onboard));
 }
+
+/// The paper 003 example run by the simulator: science executed between drive segments,
+/// tau within its windows, a NO_PATH replanned, a new goal injected, every plan valid.
+#[test]
+fn the_self_reliant_campaign_executes_science_and_replans() {
+    let s = scenario("self-reliant-campaign.toml");
+    let (_, runs) = regress::run_strategies(&s, &[Strategy::Ground, Strategy::Onboard]);
+    let lmst = |t: &str| i64::from(sim::time::SolSeconds::parse_lmst(t).expect("lmst").0);
+    let (first_due, period, tol) = (lmst("09:30"), 3 * 3600, 20 * 60);
+    for (strategy, outcome) in &runs {
+        for sol in outcome.sols.iter().filter(|r| r.drove) {
+            let plan = sol.activity_plan.as_ref().expect("plan");
+            assert!(
+                plan.violations.is_empty(),
+                "{strategy:?} {}: {:?}",
+                sol.sol,
+                plan.violations
+            );
+            let t = &plan.timeline;
+            for w in t.windows(2) {
+                assert!(
+                    w[0].end_s <= w[1].start_s,
+                    "{strategy:?} {}: overlap",
+                    sol.sol
+                );
+            }
+            // Periodic instances start within ± 20 min of their due times.
+            for step in t.iter().filter(|x| x.activity.starts_with("tau-")) {
+                let k: i64 = step.activity["tau-".len()..]
+                    .parse()
+                    .expect("instance number");
+                let due = first_due + k * period;
+                assert!((step.start_s - due).abs() <= tol, "{step:?} due {due}");
+            }
+            // A survey runs between two drive segments on every sol that drives a full one.
+            let is_drive = |i: usize| t.get(i).is_some_and(|x| x.activity.starts_with("drive#"));
+            if sol.distance_m > 150.0 {
+                assert!(
+                    (0..t.len()).any(|i| t[i].activity.starts_with("survey-")
+                        && (0..i).any(is_drive)
+                        && (i + 1..t.len()).any(is_drive)),
+                    "{strategy:?} {}: {:?}",
+                    sol.sol,
+                    t.iter().map(|x| &x.activity).collect::<Vec<_>>()
+                );
+            }
+        }
+    }
+    let ground = &runs[&Strategy::Ground];
+    let faulted = ground
+        .sol(384)
+        .and_then(|r| r.activity_plan.as_ref())
+        .expect("sol 384");
+    assert!(
+        faulted
+            .changes
+            .iter()
+            .any(|c| c.contains("NO_PATH") && c.contains("cancelled drive#")),
+        "{:?}",
+        faulted.changes
+    );
+    let onboard = &runs[&Strategy::Onboard];
+    let injected = onboard
+        .sol(384)
+        .and_then(|r| r.activity_plan.as_ref())
+        .expect("sol 384");
+    assert!(
+        injected
+            .changes
+            .iter()
+            .any(|c| c.contains("aegis-384 added")),
+        "{:?}",
+        injected.changes
+    );
+    let aegis = injected
+        .timeline
+        .iter()
+        .find(|x| x.activity == "aegis-384")
+        .expect("observed");
+    assert!(
+        aegis.start_s >= lmst("15:30"),
+        "after it was revealed: {aegis:?}"
+    );
+    assert!(
+        aegis
+            .outcome
+            .as_deref()
+            .is_some_and(|o| o.starts_with("observed"))
+    );
+    // The co-processor's actual durations are fed back: the chain's steps take what the log says.
+    let event = injected_event(onboard, 384);
+    let run_1 = injected
+        .timeline
+        .iter()
+        .find(|x| x.activity == "hbs_run_1")
+        .expect("run 1");
+    let transfer = injected
+        .timeline
+        .iter()
+        .find(|x| x.activity == "hbs_transfer")
+        .expect("transfer");
+    let log_run_1 = event
+        .steps
+        .iter()
+        .find(|e| e.step == "RUN_1")
+        .expect("RUN_1")
+        .t_s;
+    let log_transfer = event
+        .steps
+        .iter()
+        .find(|e| e.step == "TRANSFER_TO_HBS")
+        .expect("xfer")
+        .t_s;
+    assert_eq!(run_1.end_s - transfer.start_s, log_run_1.round() as i64);
+    assert_eq!(
+        transfer.end_s - transfer.start_s,
+        log_transfer.round() as i64
+    );
+}
+
+fn injected_event(o: &sim::CampaignOutcome, sol: u32) -> sim::outcome::LocalizationEvent {
+    o.sol(sol)
+        .and_then(|r| r.onboard_localization.clone())
+        .expect("onboard localization")
+}
+
+/// A lost localization (here: rejected by its validity checks) is a big disruption: the rest of the sol is
+/// replanned from the state after it, and the plan stays valid.
+#[test]
+fn a_lost_localization_replans_the_rest_of_the_sol() {
+    let mut s = scenario("sol383-386.toml");
+    s.campaign.localizer =
+        sim::localizer::OnboardLocalizer::Statistical(sim::localizer::StatisticalLocalizer {
+            failure_rate: 1.0,
+            ..Default::default()
+        });
+    let (_, runs) = regress::run_strategies(&s, &[Strategy::Onboard]);
+    let mut lost = 0;
+    for sol in runs[&Strategy::Onboard].sols.iter().filter(|r| r.drove) {
+        let plan = sol.activity_plan.as_ref().expect("plan");
+        assert!(
+            plan.violations.is_empty(),
+            "{}: {:?}",
+            sol.sol,
+            plan.violations
+        );
+        let event = sol.onboard_localization.as_ref().expect("event");
+        assert!(!event.applied);
+        assert!(
+            plan.changes
+                .iter()
+                .any(|c| c.contains("localization lost") && c.ends_with("replanned")),
+            "{}: {:?}",
+            sol.sol,
+            plan.changes
+        );
+        lost += 1;
+    }
+    assert!(lost >= 2, "{lost} drive sols");
+}

@@ -105,6 +105,7 @@ pub fn generate(seed: u64, settings: &GeneratorSettings) -> Problem {
             min_segment_s: 1200,
             max_segments: 3,
             split_at_m: Vec::new(),
+            latest_end_s: None,
         });
         drive.tier = 2;
         drive.data_mb = 20.0;

@@ -256,11 +256,16 @@ impl Instance {
                         t.data_mb = a.data_mb * frac;
                         t.downlink_mb = a.downlink_mb * frac;
                         t.drive_m = b[j + 1] - b[j];
+                        let end_by = d.latest_end_s.unwrap_or(problem.end_s).min(problem.end_s);
                         if j > 0 {
                             t.preconditions = vec![activity_tasks[ai][j - 1]];
-                            t.latest_start_s =
-                                (problem.end_s - t.duration_s).max(a.earliest_start_s);
+                            t.latest_start_s = (end_by - t.duration_s).max(a.earliest_start_s);
                             t.driven_window_m = None;
+                        } else {
+                            t.latest_start_s = t
+                                .latest_start_s
+                                .min(end_by - t.duration_s)
+                                .max(a.earliest_start_s);
                         }
                         // The drive counts once towards its campaign, when it completes.
                         if j + 1 < k {
@@ -383,6 +388,7 @@ mod tests {
             min_segment_s: 1000,
             max_segments: 4,
             split_at_m: Vec::new(),
+            latest_end_s: None,
         });
         let mut after = Activity::task("after", 60, [0, 30_000], 1.0, 1.0);
         after.preconditions = vec!["d".into()];
@@ -398,6 +404,36 @@ mod tests {
         // Segments chain, and a successor waits for the last one.
         assert_eq!(inst.task(segs[2]).preconditions, vec![segs[1]]);
         assert_eq!(inst.task(TaskId(4)).preconditions, vec![segs[3]]);
+    }
+
+    #[test]
+    fn a_drive_window_end_bounds_every_segment() {
+        let drive = |latest_end_s| {
+            let mut d = Activity::task("d", 0, [1000, 5000], 40.0, 7.0);
+            d.kind = ActivityKind::Drive(Drive {
+                length_m: 100.0,
+                rate_m_per_h: 100.0,
+                min_segment_s: 1,
+                max_segments: 4,
+                split_at_m: vec![25.0, 50.0, 75.0],
+                latest_end_s,
+            });
+            d
+        };
+        let inst = Instance::new(&problem(vec![drive(Some(8000))])).unwrap();
+        let segs = inst.activity_tasks(0);
+        // The first segment keeps its own window; the later ones end by 8000 s.
+        assert_eq!(inst.task(segs[0]).latest_start_s, 5000);
+        for &t in &segs[1..] {
+            let t = inst.task(t);
+            assert_eq!(t.latest_start_s + t.duration_s, 8000, "{}", t.name);
+        }
+        // ... unless the window end is tighter than the first segment's own window.
+        let inst = Instance::new(&problem(vec![drive(Some(5500))])).unwrap();
+        assert_eq!(inst.task(inst.activity_tasks(0)[0]).latest_start_s, 4600);
+        // 3600 s of driving cannot end by 4000 s when it starts at 1000 s at the earliest.
+        let e = Instance::new(&problem(vec![drive(Some(4000))])).unwrap_err();
+        assert!(e.to_string().contains("latest_end_s"), "{e}");
     }
 
     #[test]

@@ -108,6 +108,15 @@ pub(crate) fn check_activity(p: &Problem, a: &crate::problem::Activity) -> Resul
                 }
                 prev = m;
             }
+            if let Some(e) = d.latest_end_s
+                && e < a.earliest_start_s + d.duration_s()
+            {
+                return bad(
+                    "kind.latest_end_s",
+                    e as f64,
+                    "a time leaving room for the whole drive after earliest_start_s",
+                );
+            }
             if d.split_at_m.len() > 63 {
                 return bad(
                     "kind.split_at_m",

@@ -137,6 +137,10 @@ pub struct Drive {
     /// state-based campaign's distances). (default: none)
     #[serde(default)]
     pub split_at_m: Vec<f64>,
+    /// Every segment must end by this time, s after midnight (a drive window that activities
+    /// interleaved with the drive may stretch no further). (default: the problem's `end_s`)
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub latest_end_s: Option<i64>,
 }
 
 fn default_max_segments() -> u32 {

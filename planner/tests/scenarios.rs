@@ -106,6 +106,7 @@ fn drive_day() -> Problem {
         min_segment_s: 600,
         max_segments: 4,
         split_at_m: vec![75.0],
+        latest_end_s: None,
     });
     drive.preconditions = vec!["heat".into()];
     drive.data_mb = 50.0;
@@ -413,6 +414,7 @@ fn fig3_long_drive_pauses_for_tau_and_surveys() {
         min_segment_s: 600,
         max_segments: 4,
         split_at_m: vec![75.0, 150.0, 225.0],
+        latest_end_s: None,
     });
     drive.preconditions = vec!["heat".into()];
     let survey = Activity::task("survey", 600, [32_400, 60_000], 15.0, 0.0);

@@ -10,15 +10,18 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
 use crate::astar::AStar;
-use crate::autonav::{DriveContext, DriveLimits, RoverParams, RoverState, VoSource, drive_sol};
+use crate::autonav::{DriveContext, DriveLimits, RoverParams, RoverState, VoSource};
 use crate::calendar::{Calendar, Planning};
-use crate::localizer::{ImageryLocalizer, LocalizationResult, OnboardLocalizer};
+use crate::localizer::OnboardLocalizer;
 use crate::outcome::{
-    ActivityStep, CampaignOutcome, FaultKind, LegClearance, LocalizationEvent, SolRecord, Totals,
+    ActivityStep, CampaignOutcome, FaultKind, LegClearance, LocalizationEvent, ScienceTally,
+    SolRecord, Totals,
 };
 use crate::planning_grid::PlanningGrid;
 use crate::pose::estimate_error_m;
-use crate::sol_plan::{ChainDurations, PlannedSol, SolPlan, SolPlanParams, SolPlanRequest};
+use crate::science::{Science, ScienceProgress, SolScience};
+use crate::sol_plan::{SolPlanParams, SolPlanRequest};
+use crate::sol_run::{SolEnv, SolState, chain_durations, execute_sol};
 use crate::strategy::Strategy;
 use crate::time::SolSeconds;
 use crate::uncertainty::UncertaintyModel;
@@ -53,130 +56,8 @@ pub struct Campaign {
     pub grid: PlanningGrid,
     /// Each drive sol's activity plan settings.
     pub sol_plan: SolPlanParams,
-}
-
-/// Planned durations of the onboard localization chain: the co-processor model's settings,
-/// with the transfer of a flight-size input set (as measured by `localization::onboard`).
-fn chain_durations(localizer: &OnboardLocalizer) -> ChainDurations {
-    let hbs = match localizer {
-        OnboardLocalizer::Imagery(i) => i.settings.hbs,
-        OnboardLocalizer::Statistical(_) => localization::hbs::HbsParams::default(),
-    };
-    let run_s = match localizer {
-        OnboardLocalizer::Imagery(i) => {
-            i.settings.hbs_slowdown * localization::onboard::MEASURED_FLIGHT_SIZE_RUN_S
-        }
-        OnboardLocalizer::Statistical(_) => hbs.run_s,
-    };
-    ChainDurations {
-        transfer_s: (localization::onboard::FLIGHT_SIZE_INPUT_BYTES as f64 / hbs.link_bytes_per_s)
-            .ceil() as i64,
-        run_s: run_s.ceil() as i64,
-        reboot_s: hbs.reboot_s.ceil() as i64,
-    }
-}
-
-/// Apply a statistical-model localization result to `state`.
-fn statistical_localization(
-    result: LocalizationResult,
-    c: &Campaign,
-    state: &mut RoverState,
-    start: SolSeconds,
-) -> LocalizationEvent {
-    let mut event = LocalizationEvent {
-        kind: "onboard",
-        localizer: "statistical",
-        applied: false,
-        reason: None,
-        error_m: None,
-        matched_error_m: None,
-        sigma_m: None,
-        search_radius_m: None,
-        uncertainty_after_m: 0.0,
-        start_lmst: Some(start.lmst()),
-        duration_s: None,
-        steps: Vec::new(),
-    };
-    match result {
-        LocalizationResult::Accepted { error_m, sigma_m } => {
-            state.estimate.position_m =
-                state.truth.position_m + nalgebra::Vector2::new(error_m[0], error_m[1]);
-            state
-                .uncertainty
-                .reset_onboard(sigma_m, c.operator_margin_m);
-            state.clear_path();
-            event.applied = true;
-            event.error_m = Some(error_m[0].hypot(error_m[1]));
-            event.sigma_m = Some(sigma_m);
-        }
-        LocalizationResult::Rejected { reason } => event.reason = Some(reason.into()),
-    }
-    event.uncertainty_after_m = state.uncertainty.radius_m(&c.model);
-    event
-}
-
-/// Render the post-drive imagery at the true position, match it from the estimate through the
-/// co-processor model, and apply the result to `state` if it passed every check.
-fn imagery_localization(
-    loc: &ImageryLocalizer,
-    c: &Campaign,
-    state: &mut RoverState,
-    start: SolSeconds,
-    sol_seed: u64,
-) -> LocalizationEvent {
-    use localization::onboard::{OnboardRequest, run_onboard};
-    let truth = state.truth.position_m;
-    let estimate = state.estimate.position_m;
-    let request = OnboardRequest {
-        truth_m: [truth.x, truth.y],
-        prior_m: [estimate.x, estimate.y],
-        uncertainty_m: state.uncertainty.radius_m(&c.model),
-        // One world and one orbital map per scenario; the imaging and upsets change each sol.
-        truth_seed: maps::procedural::noise::sub_seed(c.seed, 0x7275_7468),
-        orbital_seed: maps::procedural::noise::sub_seed(c.seed, 0x6f72_6269),
-        sol_seed,
-    };
-    let run = run_onboard(&loc.layers, &request, &loc.settings);
-    let at = |t_s: f64| SolSeconds(start.0 + t_s.round() as u32).lmst();
-    let mut event = LocalizationEvent {
-        kind: "onboard",
-        localizer: loc.settings.matcher.method.name(),
-        applied: false,
-        reason: run.lost_reason.clone(),
-        error_m: None,
-        matched_error_m: run
-            .matched
-            .as_ref()
-            .map(|m| (m.position_m[0] - truth.x).hypot(m.position_m[1] - truth.y)),
-        sigma_m: None,
-        search_radius_m: Some(run.search_radius_m),
-        uncertainty_after_m: 0.0,
-        start_lmst: Some(start.lmst()),
-        duration_s: Some(run.log.duration_s),
-        steps: run
-            .log
-            .events
-            .iter()
-            .map(|e| ActivityStep {
-                lmst: Some(at(e.t_s)),
-                t_s: e.t_s,
-                step: e.step,
-                detail: e.detail.clone(),
-            })
-            .collect(),
-    };
-    if let Some(fix) = run.applied {
-        state.estimate.position_m = nalgebra::Vector2::new(fix.position_m[0], fix.position_m[1]);
-        state
-            .uncertainty
-            .reset_onboard(fix.sigma_m, c.operator_margin_m);
-        state.clear_path();
-        event.applied = true;
-        event.error_m = Some((fix.position_m[0] - truth.x).hypot(fix.position_m[1] - truth.y));
-        event.sigma_m = Some(fix.sigma_m);
-    }
-    event.uncertainty_after_m = state.uncertainty.radius_m(&c.model);
-    event
+    /// Science campaigns planned onboard each drive sol (none in most scenarios).
+    pub science: Science,
 }
 
 /// Per-leg passage clearance of the route (independent of strategy).
@@ -248,6 +129,7 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
         vec![Some("no plan uplinked yet"); cal.sols.len()];
     let mut plan_last_drive: Option<usize> = None;
     let mut planning = Planning::Ground;
+    let mut progress = ScienceProgress::default();
 
     for (idx, entry) in cal.sols.iter().enumerate() {
         let mut ground_event = None;
@@ -373,24 +255,34 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
                 ),
                 _ => (window, VoSource::Terrain),
             };
-            let planned = PlannedSol::new(
-                &c.sol_plan,
-                &SolPlanRequest {
-                    drive_start: cal.drive_start,
-                    drive_end: SolSeconds(end.max(cal.drive_start.0)),
-                    drive_rate_m_per_h: c.rover.drive_rate_m_per_h,
-                    downlink: entry.downlink_lmst,
-                    chain: strategy
-                        .onboard_localization()
-                        .then(|| chain_durations(&c.localizer)),
+            let env = SolEnv {
+                c,
+                ctx: &ctx,
+                sol: entry.sol,
+                onboard: strategy.onboard_localization(),
+                limits,
+                vo,
+            };
+            let request = SolPlanRequest {
+                drive_start: cal.drive_start,
+                drive_end: SolSeconds(end.max(cal.drive_start.0)),
+                drive_rate_m_per_h: c.rover.drive_rate_m_per_h,
+                downlink: entry.downlink_lmst,
+                chain: env.onboard.then(|| chain_durations(&c.localizer)),
+                science: SolScience::default(),
+            };
+            let run = execute_sol(
+                &env,
+                &mut SolState {
+                    rover: &mut state,
+                    progress: &mut progress,
+                    rng: &mut rng,
+                    astar: &mut astar,
                 },
+                request,
             );
-            let result = drive_sol(&ctx, &mut state, limits, vo, &mut rng, &mut astar);
-            let drive_end_s = i64::from(cal.drive_start.0) + result.drive_time_s.round() as i64;
-            record.activity_plan = Some(match planned {
-                Ok(p) => p.finish(&c.sol_plan, drive_end_s),
-                Err(e) => SolPlan::not_planned(&e),
-            });
+            let result = run.drive;
+            record.activity_plan = Some(run.plan);
             record.distance_m = result.distance_m;
             record.d_vo_m = result.d_vo_m;
             record.d_novo_m = result.d_novo_m;
@@ -414,43 +306,35 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
                 .filter(|l| l.to_waypoint >= start_waypoint.max(1) && l.to_waypoint <= end_waypoint)
                 .map(|l| l.clearance_m.unwrap_or(f64::NEG_INFINITY))
                 .reduce(f64::min);
-        }
-        record.end_uncertainty_m = state.uncertainty.radius_m(&c.model);
-        record.truth_error_m = estimate_error_m(&state.truth, &state.estimate);
-        record.truth_inside_disc = record.truth_error_m <= record.end_uncertainty_m + 1e-9;
-
-        if record.drove && strategy.onboard_localization() {
-            // After the drive, its post-drive imaging and SunFind, when the sol's plan starts the
-            // transfer: MOB_WRITE_ONBD_INPUT_FILE → HBS run, reboot, run, compare →
-            // MOB_APPLY_ONBD_LOCALIZATION. Without a plan, right after the drive.
-            let planned_start = record
-                .activity_plan
-                .as_ref()
-                .and_then(|p| p.timeline.iter().find(|t| t.activity == "hbs_transfer"))
-                .map(|t| SolSeconds(t.start_s.max(0) as u32));
-            let start = planned_start.unwrap_or(SolSeconds(
-                cal.drive_start.0 + record.drive_time_s.round() as u32,
-            ));
-            let event = match &c.localizer {
-                OnboardLocalizer::Statistical(model) => {
-                    statistical_localization(model.localize(&mut rng), c, &mut state, start)
+            record.end_uncertainty_m = run.end_uncertainty_m;
+            record.truth_error_m = run.truth_error_m;
+            record.truth_inside_disc = record.truth_error_m <= record.end_uncertainty_m + 1e-9;
+            if let Some(event) = run.localization {
+                if event.applied {
+                    sols_since_localization = 0;
                 }
-                OnboardLocalizer::Imagery(loc) => {
-                    let sol_seed = rand::RngExt::random::<u64>(&mut rng);
-                    imagery_localization(loc, c, &mut state, start, sol_seed)
-                }
-            };
-            if event.applied {
-                sols_since_localization = 0;
+                record.onboard_localization = Some(event);
             }
-            record.onboard_localization = Some(event);
+        } else {
+            record.truth_inside_disc = record.truth_error_m <= record.end_uncertainty_m + 1e-9;
         }
         record.end_position_m = [state.estimate.position_m.x, state.estimate.position_m.y];
         record.end_true_position_m = [state.truth.position_m.x, state.truth.position_m.y];
         records.push(record);
     }
 
-    let totals = totals(c, &records, goal_sol, &state);
+    let mut totals = totals(c, &records, goal_sol, &state);
+    for campaign in c.science.campaign_ids() {
+        let get =
+            |m: &std::collections::BTreeMap<String, u32>| m.get(campaign).copied().unwrap_or(0);
+        totals.science.insert(
+            campaign.to_string(),
+            ScienceTally {
+                done: get(&progress.done),
+                failed: get(&progress.failed),
+            },
+        );
+    }
     CampaignOutcome {
         strategy: strategy.name().into(),
         seed: c.seed,
@@ -575,5 +459,6 @@ fn totals(
         truth_outside_disc: records.iter().filter(|r| !r.truth_inside_disc).count() as u32,
         goal_reached: goal_sol.is_some(),
         route_remaining_m: remaining,
+        science: std::collections::BTreeMap::new(),
     }
 }

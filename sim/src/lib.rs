@@ -13,8 +13,11 @@
 //! - [`autonav`]: one sol's drive: plan, step, VO, slip, faults.
 //! - [`localizer`]: the statistical onboard localizer (0.36 m mean / 0.93 m p99, paper 000 §4).
 //! - [`calendar`], [`strategy`]: operations calendar, data availability and the four strategies.
-//! - [`sol_plan`]: each drive sol's activity plan (heating, drive, imaging, passes, the onboard
-//!   localization chain) from the `planner` crate, repaired after the drive and validated.
+//! - [`sol_plan`]: each drive sol's activity plan (heating, drive, imaging, passes, science, the
+//!   onboard localization chain) from the `planner` crate, executed step by step with repairs
+//!   and replans ([`sol_plan::SolExecution`]), every plan validated.
+//! - [`science`]: campaign intents that outlive a sol (goal-set targets on the map, periodic,
+//!   state-based) and the candidates they offer each sol.
 //! - [`campaign`]: the multi-sol runner; [`outcome`]: what it reports.
 //!
 //! ```
@@ -39,7 +42,9 @@ pub mod localizer;
 pub mod outcome;
 pub mod planning_grid;
 pub mod pose;
+pub mod science;
 pub mod sol_plan;
+mod sol_run;
 pub mod strategy;
 pub mod time;
 pub mod uncertainty;

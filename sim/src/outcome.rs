@@ -171,6 +171,19 @@ pub struct Totals {
     pub goal_reached: bool,
     /// Route metres left at the end of the run (distance along the remaining waypoints).
     pub route_remaining_m: f64,
+    /// Science campaigns: members done and failed per campaign id (scenarios with
+    /// `[science]` only).
+    #[serde(skip_serializing_if = "std::collections::BTreeMap::is_empty")]
+    pub science: std::collections::BTreeMap<String, ScienceTally>,
+}
+
+/// One science campaign's tally over a run.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct ScienceTally {
+    /// Members done (targets observed, instances taken).
+    pub done: u32,
+    /// Members that ran but failed (a target out of reach when observed).
+    pub failed: u32,
 }
 
 /// Route-leg clearance, computed once per scenario (independent of strategy).

@@ -11,12 +11,19 @@
 //! | `comm_pass` | fixed at the sol's `downlink_lmst`, if after the drive | sends the panorama down |
 //! | `sunfind` … `compare_apply` | after the imaging, onboard strategies only | the onboard localization chain of paper 000 Fig. 18-19: SunFind, transfer to the co-processor, run, reboot, run, compare and apply |
 //!
-//! The simulator then drives; when the drive ends (early at the goal or a fault, or exactly
-//! at the end of its window) the plan is **repaired** ([`planner::repair`]: later activities
-//! shift within their windows) or, if that fails, **replanned** from the state after the drive
-//! ([`planner::plan_from`]). Both plans go through [`planner::validate_plan`], which checks
+//! With a scenario's science campaigns ([`crate::science`]) the sol also offers targets in
+//! reach, periodic instances and state-based instances; the drive is split at the
+//! state-based distances so a survey can run between segments (paper 003 Fig. 3).
+//!
+//! The simulator then **executes** the plan step by step ([`SolExecution`]): drive segments
+//! through AutoNav, the localization chain through the co-processor model, observations
+//! against the rover's true position. Each step's actual end comes back: a small slip is
+//! **repaired** ([`planner::repair`]: later activities shift within their windows); a big
+//! disruption — a fault ends the drive, the localization is lost, a new goal is revealed —
+//! cancels what can no longer run and **replans** from the current state
+//! ([`planner::plan_from`]). Every plan goes through [`planner::validate_plan`], which checks
 //! windows, order, battery and data volume on its own re-simulation; the sol log carries the
-//! timeline and any violation.
+//! executed timeline, every change and any violation.
 //!
 //! Passes that overlap the drive are left out: the rover relays while it drives, and the
 //! planner schedules one activity at a time.
@@ -25,10 +32,11 @@
 //! Li-ion batteries of ~1.2 kWh each); every one is a field of [`SolPlanParams`].
 
 use planner::{
-    Activity, ActivityKind, Drive, Instance, Plan, PlanStatus, Problem, RepairOutcome,
-    SearchSettings, State, plan, plan_from, repair, validate_plan,
+    Activity, ActivityKind, Campaign, Drive, Instance, Plan, PlanStatus, Problem, RepairOutcome,
+    SearchSettings, State, TaskId, plan_from, repair, validate_plan,
 };
 
+use crate::science::SolScience;
 use crate::time::SolSeconds;
 
 /// The onboard localization chain's activities, in order (paper 000 Fig. 18-19).
@@ -74,10 +82,16 @@ pub struct SolPlanParams {
     pub comm_pass_s: i64,
     /// Data a pass downlinks, MB (default: 500; judgement).
     pub comm_downlink_mb: f64,
+    /// Wake-up: start of the planning window, seconds after local midnight (default: 09:00
+    /// LMST; earlier if the heating before the drive starts earlier).
+    pub sol_start: SolSeconds,
     /// End of the planning window, seconds after local midnight (default: 17:00 LMST).
     pub sol_end: SolSeconds,
     /// Node budget of each search (deterministic; default: 20,000).
     pub node_budget: u64,
+    /// How far science stops interleaved with a split drive may stretch the drive past its
+    /// window, s (default: 3,600 — judgement: AutoNav drives until mid-afternoon at most).
+    pub drive_stretch_s: i64,
 }
 
 impl Default for SolPlanParams {
@@ -98,8 +112,10 @@ impl Default for SolPlanParams {
             data_capacity_mb: 4_000.0,
             comm_pass_s: 600,
             comm_downlink_mb: 500.0,
-            sol_end: SolSeconds(62_882), // 17:00 LMST
+            sol_start: SolSeconds(33_291), // 09:00 LMST
+            sol_end: SolSeconds(62_882),   // 17:00 LMST
             node_budget: 20_000,
+            drive_stretch_s: 3_600,
         }
     }
 }
@@ -116,7 +132,7 @@ pub struct ChainDurations {
 }
 
 /// What the sol needs planned.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct SolPlanRequest {
     /// Drive window start.
     pub drive_start: SolSeconds,
@@ -128,6 +144,9 @@ pub struct SolPlanRequest {
     pub downlink: Option<SolSeconds>,
     /// The onboard localization chain, under onboard strategies.
     pub chain: Option<ChainDurations>,
+    /// Science candidates (targets in reach, periodic and state-based instances) and where
+    /// they split the drive.
+    pub science: SolScience,
 }
 
 /// One activity of the sol timeline, for the sol log.
@@ -147,19 +166,24 @@ pub struct TimelineStep {
     pub energy_wh_after: f64,
     /// Stored data after it, MB.
     pub data_mb_after: f64,
+    /// What it achieved, when the simulator judged it (a science observation done or out
+    /// of reach, a drive stopped by a fault).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub outcome: Option<String>,
 }
 
-/// The sol's plan as laid out, and as repaired after the drive.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+/// The sol's plan as executed, with its repairs and replans.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
 pub struct SolPlan {
     /// Search result: `optimal`, `feasible` (budget hit), `infeasible` or `no plan found`.
     pub status: &'static str,
-    /// The timeline: the activities up to and including the drive as executed, then the rest
-    /// as repaired or replanned after it.
+    /// The timeline as executed: actual start and end of every activity.
     pub timeline: Vec<TimelineStep>,
-    /// What happened after the drive: `as planned`, `shifted N`, `replanned: …`.
-    pub after_drive: String,
-    /// Violations the independent validator found, in either plan (must be empty).
+    /// Every repair and replan, in order (`HH:MM: drive#1/1 ended at … : 3 later activities
+    /// shifted`, `HH:MM: NO_PATH after 14.0 m (cancelled …): replanned`); empty if the sol
+    /// ran as planned.
+    pub changes: Vec<String>,
+    /// Violations the independent validator found in any plan the sol used (must be empty).
     pub violations: Vec<String>,
 }
 
@@ -170,7 +194,7 @@ impl SolPlan {
         Self {
             status: "not planned",
             timeline: Vec::new(),
-            after_drive: String::new(),
+            changes: Vec::new(),
             violations: vec![format!("planner: {e}")],
         }
     }
@@ -195,29 +219,54 @@ fn chained(id: &str, duration_s: i64, power_w: f64, after: &str, window: [i64; 2
     a
 }
 
+/// The sol's planning window `[start, end]`, s after midnight: from the wake-up (or the
+/// heating before the drive, if earlier) to the end of the sol's activities (at least four
+/// hours after the drive window, room for the imaging and the localization chain).
+#[must_use]
+pub fn planning_window(
+    p: &SolPlanParams,
+    drive_start: SolSeconds,
+    drive_end: SolSeconds,
+) -> [i64; 2] {
+    let drive_start = i64::from(drive_start.0);
+    let drive_end = i64::from(drive_end.0).max(drive_start + 1);
+    [
+        i64::from(p.sol_start.0).min(drive_start - p.heating_s),
+        i64::from(p.sol_end.0).max(drive_end + 4 * 3_600),
+    ]
+}
+
+/// Metres the drive window allows at the nominal rate.
+#[must_use]
+pub fn planned_drive_m(req: &SolPlanRequest) -> f64 {
+    let drive_start = i64::from(req.drive_start.0);
+    let drive_end = i64::from(req.drive_end.0).max(drive_start + 1);
+    req.drive_rate_m_per_h * (drive_end - drive_start) as f64 / 3_600.0
+}
+
 /// The planning problem of one drive sol.
 #[must_use]
 pub fn sol_problem(p: &SolPlanParams, req: &SolPlanRequest) -> Problem {
     let drive_start = i64::from(req.drive_start.0);
     let drive_end = i64::from(req.drive_end.0).max(drive_start + 1);
-    let start_s = drive_start - p.heating_s;
-    let end_s = i64::from(p.sol_end.0).max(drive_end + 4 * 3_600);
+    let [start_s, end_s] = planning_window(p, req.drive_start, req.drive_end);
     let late = end_s;
     let mut heating = Activity::task(
         "heating",
         p.heating_s,
-        [start_s, start_s],
+        [drive_start - p.heating_s, drive_start - p.heating_s],
         p.heating_power_w,
         0.0,
     );
     heating.mandatory = true;
     let mut drive = Activity::task("drive", 1, [drive_start, drive_start], p.drive_power_w, 1.0);
     drive.kind = ActivityKind::Drive(Drive {
-        length_m: req.drive_rate_m_per_h * (drive_end - drive_start) as f64 / 3_600.0,
+        length_m: planned_drive_m(req),
         rate_m_per_h: req.drive_rate_m_per_h,
         min_segment_s: drive_end - drive_start,
-        max_segments: 1,
-        split_at_m: Vec::new(),
+        max_segments: req.science.split_at_m.len() as u32 + 1,
+        split_at_m: req.science.split_at_m.clone(),
+        latest_end_s: Some(drive_end + p.drive_stretch_s),
     });
     drive.mandatory = true;
     drive.preconditions = vec!["heating".into()];
@@ -255,6 +304,7 @@ pub fn sol_problem(p: &SolPlanParams, req: &SolPlanRequest) -> Problem {
             after = id;
         }
     }
+    activities.extend(req.science.activities.iter().cloned());
     Problem {
         start_s,
         end_s,
@@ -264,50 +314,79 @@ pub fn sol_problem(p: &SolPlanParams, req: &SolPlanRequest) -> Problem {
         data_capacity_mb: p.data_capacity_mb,
         initial_data_mb: 0.0,
         activities,
-        campaigns: Vec::new(),
+        campaigns: req.science.campaigns.clone(),
     }
 }
 
-/// Timeline rows of `plan` run from `state`, with the battery and data after each step
-/// (idle recharge clipped at capacity).
-fn timeline(
-    inst: &Instance,
-    p: &SolPlanParams,
-    state: &State,
-    plan: &Plan,
-    out: &mut Vec<TimelineStep>,
-) {
-    let cap = inst.problem().battery_capacity_wh;
-    let (mut t, mut e, mut d) = (state.time_s, state.energy_wh, state.data_mb);
-    for s in &plan.steps {
-        let task = inst.task(s.task);
-        e = (e + p.recharge_w * (s.start_s - t).max(0) as f64 / 3_600.0).min(cap);
-        e = (e + (p.recharge_w - task.power_w) * (s.end_s - s.start_s) as f64 / 3_600.0).min(cap);
-        d = (d + task.data_mb - task.downlink_mb).max(0.0);
-        t = s.end_s;
-        out.push(TimelineStep {
-            activity: task.name.clone(),
-            start_lmst: SolSeconds(s.start_s.max(0) as u32).lmst(),
-            end_lmst: SolSeconds(s.end_s.max(0) as u32).lmst(),
-            start_s: s.start_s,
-            end_s: s.end_s,
-            energy_wh_after: e,
-            data_mb_after: d,
-        });
-    }
+/// The next step of the sol's plan, as the simulator executes it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Step {
+    /// The activity id (`drive` for every drive segment).
+    pub activity: String,
+    /// `(j, k)`: drive segment `j` (0-based) of `k`.
+    pub segment: Option<(u32, u32)>,
+    /// Planned start, s after midnight.
+    pub start_s: i64,
+    /// Planned end, s after midnight.
+    pub end_s: i64,
+    /// Metres a drive segment covers (0 for other activities).
+    pub drive_m: f64,
 }
 
-/// A laid-out sol plan, ready for the drive to run.
+/// A big disruption reported with a step's end: the activities it cancels, and a full replan
+/// from the state after the step (paper 003 §3.1: "major disruptions … invoke a full
+/// replanning cycle").
+#[derive(Clone, Debug, PartialEq)]
+pub struct Disruption {
+    /// What happened, for the sol log (`NO_PATH after 14.0 m`, `localization lost: …`).
+    pub reason: String,
+    /// Activity ids whose undone tasks are dropped (the rest of a faulted drive, the rest of
+    /// an aborted localization chain).
+    pub cancel: Vec<String>,
+    /// Metres actually driven this sol, when it differs from the plan's.
+    pub driven_m: Option<f64>,
+}
+
+/// One sol's plan being executed: the simulator takes [`SolExecution::next_step`], runs it,
+/// and reports its actual end with [`SolExecution::complete`]; small slips are repaired
+/// ([`planner::repair`]: later activities shift within their windows), big disruptions and new
+/// goals ([`SolExecution::inject`]) replan from the current state ([`planner::plan_from`]).
+/// Every plan the sol uses is checked by [`planner::validate_plan`].
 #[derive(Clone, Debug)]
-pub struct PlannedSol {
+pub struct SolExecution {
+    problem: Problem,
     inst: Instance,
-    start: State,
-    plan: Plan,
+    settings: SearchSettings,
     status: &'static str,
+    /// The state before `remaining`.
+    state: State,
+    remaining: Plan,
+    rows: Vec<TimelineStep>,
+    changes: Vec<String>,
     violations: Vec<String>,
 }
 
-impl PlannedSol {
+fn lmst(s: i64) -> String {
+    SolSeconds(s.clamp(0, i64::from(u32::MAX)) as u32).lmst()
+}
+
+/// `"4 min 10 s late (planned 14:05)"`.
+fn slip(actual_s: i64, planned_s: i64) -> String {
+    let d = (actual_s - planned_s).abs();
+    format!(
+        "{} min {} s {} (planned {})",
+        d / 60,
+        d % 60,
+        if actual_s > planned_s {
+            "late"
+        } else {
+            "early"
+        },
+        lmst(planned_s)
+    )
+}
+
+impl SolExecution {
     /// Plan the sol.
     ///
     /// # Errors
@@ -320,92 +399,252 @@ impl PlannedSol {
             node_budget: Some(p.node_budget),
             ..SearchSettings::default()
         };
-        let outcome = plan(&problem, &settings)?;
-        let start = State::initial(&inst);
-        let violations = validate_plan(&inst, &start, &outcome.plan)
-            .iter()
-            .map(|v| format!("planned: {v:?}"))
-            .collect();
-        Ok(Self {
+        let state = State::initial(&inst);
+        let outcome = plan_from(&inst, &state, &settings)?;
+        let mut exec = Self {
+            problem,
             inst,
-            start,
-            plan: outcome.plan,
+            settings,
             status: status_name(outcome.status),
-            violations,
+            state,
+            remaining: outcome.plan,
+            rows: Vec::new(),
+            changes: Vec::new(),
+            violations: Vec::new(),
+        };
+        exec.validate("planned");
+        Ok(exec)
+    }
+
+    fn validate(&mut self, which: &str) {
+        let v = validate_plan(&self.inst, &self.state, &self.remaining);
+        self.violations.extend(v.iter().map(|v| {
+            format!(
+                "{which} at {}: {v:?}: {:?}",
+                lmst(self.state.time_s),
+                self.remaining.describe(&self.inst)
+            )
+        }));
+    }
+
+    /// The next step to execute (`None` when the sol's plan is done).
+    #[must_use]
+    pub fn next_step(&self) -> Option<Step> {
+        let s = self.remaining.steps.first()?;
+        let task = self.inst.task(s.task);
+        Some(Step {
+            activity: self.problem.activities[task.activity].id.clone(),
+            segment: task.segment,
+            start_s: s.start_s,
+            end_s: s.end_s,
+            drive_m: task.drive_m,
         })
     }
 
-    /// Finish the sol: the drive ended at `drive_end_s`; repair (or replan) what follows it
-    /// and return the sol log's plan.
+    /// The planning window `[start, end]`, s after midnight.
     #[must_use]
-    pub fn finish(self, p: &SolPlanParams, drive_end_s: i64) -> SolPlan {
-        let mut violations = self.violations;
-        let mut rows = Vec::new();
-        let Some(drive_step) = self
-            .plan
+    pub fn window_s(&self) -> [i64; 2] {
+        [self.problem.start_s, self.problem.end_s]
+    }
+
+    /// Metres of driving still in the plan.
+    #[must_use]
+    pub fn drive_left_m(&self) -> f64 {
+        self.remaining
             .steps
             .iter()
-            .position(|s| self.inst.task(s.task).name.starts_with("drive"))
-        else {
-            timeline(&self.inst, p, &self.start, &self.plan, &mut rows);
-            return SolPlan {
-                status: self.status,
-                timeline: rows,
-                after_drive: "no drive in the plan".into(),
-                violations,
-            };
+            .map(|s| self.inst.task(s.task).drive_m)
+            .sum()
+    }
+
+    /// Whether an activity id is in the current problem.
+    #[must_use]
+    pub fn has_activity(&self, id: &str) -> bool {
+        self.problem.activities.iter().any(|a| a.id == id)
+    }
+
+    /// The next step ran and ended at `actual_end_s`; `outcome` goes into its timeline row.
+    /// Without a disruption the rest of the plan is repaired (or, if a later activity no
+    /// longer fits, replanned); with one, its activities are cancelled and the rest replanned.
+    pub fn complete(
+        &mut self,
+        actual_end_s: i64,
+        outcome: Option<String>,
+        disruption: Option<Disruption>,
+    ) {
+        let Some(first) = self.remaining.steps.first().copied() else {
+            return;
         };
-        let drive_start = self.plan.steps[drive_step].start_s;
-        let actual_end = drive_end_s.max(drive_start + 1);
-        let mut executed = Plan {
-            steps: self.plan.steps[..=drive_step].to_vec(),
+        let end_s = actual_end_s
+            .max(first.start_s + 1)
+            .min(self.problem.end_s.max(first.start_s + 1));
+        let name = self.inst.task(first.task).name.clone();
+        let (state, repaired) = match repair(&self.inst, &self.state, &self.remaining, 0, end_s) {
+            Ok(RepairOutcome::Repaired {
+                state,
+                plan,
+                shifted,
+            }) => {
+                if shifted > 0 && disruption.is_none() {
+                    self.changes.push(format!(
+                        "{}: {name} ended {}: {shifted} later activities shifted",
+                        lmst(end_s),
+                        slip(end_s, first.end_s)
+                    ));
+                }
+                (state, Some(plan))
+            }
+            Ok(RepairOutcome::ReplanNeeded {
+                state,
+                task,
+                reason,
+                ..
+            }) => {
+                if disruption.is_none() {
+                    self.changes.push(format!(
+                        "{}: {name} ended {}: {} no longer fits ({reason:?}): replanned",
+                        lmst(end_s),
+                        slip(end_s, first.end_s),
+                        self.inst.task(task).name
+                    ));
+                }
+                (state, None)
+            }
+            Err(e) => {
+                self.violations.push(format!("repair after {name}: {e}"));
+                self.remaining.steps.remove(0);
+                return;
+            }
         };
-        executed.steps[drive_step].end_s = actual_end;
-        timeline(&self.inst, p, &self.start, &executed, &mut rows);
-        let (after_drive, state, rest) =
-            match repair(&self.inst, &self.start, &self.plan, drive_step, actual_end) {
-                Ok(RepairOutcome::Repaired {
-                    state,
-                    plan,
-                    shifted,
-                }) => (
-                    if shifted == 0 {
-                        "as planned".to_string()
+        self.rows.push(TimelineStep {
+            activity: name,
+            start_lmst: lmst(first.start_s),
+            end_lmst: lmst(end_s),
+            start_s: first.start_s,
+            end_s,
+            energy_wh_after: state.energy_wh,
+            data_mb_after: state.data_mb,
+            outcome,
+        });
+        self.state = state;
+        match (disruption, repaired) {
+            (None, Some(plan)) => {
+                self.remaining = plan;
+                self.validate("repaired");
+            }
+            (None, None) => self.replan(),
+            (Some(d), _) => {
+                let cancelled = self.cancel(&d.cancel);
+                if let Some(m) = d.driven_m {
+                    self.state.driven_m = m;
+                }
+                self.changes.push(format!(
+                    "{}: {}{}: replanned",
+                    lmst(end_s),
+                    d.reason,
+                    if cancelled.is_empty() {
+                        String::new()
                     } else {
-                        format!("shifted {shifted}")
-                    },
-                    state,
-                    plan,
-                ),
-                Ok(RepairOutcome::ReplanNeeded { state, reason, .. }) => {
-                    let settings = SearchSettings {
-                        node_budget: Some(p.node_budget),
-                        ..SearchSettings::default()
-                    };
-                    match plan_from(&self.inst, &state, &settings) {
-                        Ok(o) => (format!("replanned ({reason:?})"), state, o.plan),
-                        Err(e) => (format!("replan failed: {e}"), state, Plan::default()),
+                        format!(" (cancelled {})", cancelled.join(", "))
                     }
+                ));
+                self.replan();
+            }
+        }
+    }
+
+    /// A new goal is known now (autonomous science flagged a target): add it, and its
+    /// campaign if the sol's problem lacks it, and replan from the current state.
+    pub fn inject(&mut self, activity: Activity, campaign: Option<Campaign>, reason: &str) {
+        let mut problem = self.problem.clone();
+        if let Some(c) = campaign
+            && !problem.campaigns.iter().any(|o| o.id == c.id)
+        {
+            problem.campaigns.push(c);
+        }
+        let id = activity.id.clone();
+        problem.activities.push(activity);
+        // Appending keeps every existing task id, so the current state stays valid.
+        match Instance::new(&problem) {
+            Ok(inst) => {
+                self.problem = problem;
+                self.inst = inst;
+                self.changes.push(format!(
+                    "{}: {reason}: {id} added: replanned",
+                    lmst(self.state.time_s)
+                ));
+                self.replan();
+            }
+            Err(e) => self.violations.push(format!("new goal {id}: {e}")),
+        }
+    }
+
+    /// Mark every undone task of the activities `cancel` as done (dropped); their names.
+    fn cancel(&mut self, cancel: &[String]) -> Vec<String> {
+        let mut cancelled = Vec::new();
+        for (i, t) in self.inst.tasks().iter().enumerate() {
+            let id = TaskId(i as u32);
+            if cancel.contains(&self.problem.activities[t.activity].id)
+                && !self.state.done.contains(&id)
+            {
+                self.state.done.push(id);
+                cancelled.push(t.name.clone());
+            }
+        }
+        cancelled
+    }
+
+    /// Replan from the current state. If nothing holding every mandatory activity fits, the
+    /// drive window has closed on the rest of the drive (AutoNav stops at the window's end):
+    /// cancel its remaining segments and replan once more.
+    fn replan(&mut self) {
+        let mut outcome = plan_from(&self.inst, &self.state, &self.settings);
+        if let Ok(o) = &outcome
+            && matches!(o.status, PlanStatus::Infeasible | PlanStatus::NoPlanFound)
+        {
+            let cancelled = self.cancel(&["drive".to_string()]);
+            if !cancelled.is_empty() {
+                self.changes.push(format!(
+                    "{}: no plan fits the rest of the drive: cancelled {}: replanned",
+                    lmst(self.state.time_s),
+                    cancelled.join(", ")
+                ));
+                outcome = plan_from(&self.inst, &self.state, &self.settings);
+            }
+        }
+        match outcome {
+            Ok(o) => {
+                if matches!(o.status, PlanStatus::Infeasible | PlanStatus::NoPlanFound) {
+                    self.violations.push(format!(
+                        "replan at {}: {}",
+                        lmst(self.state.time_s),
+                        status_name(o.status)
+                    ));
                 }
-                Err(e) => {
-                    violations.push(format!("repair: {e}"));
-                    (
-                        format!("repair failed: {e}"),
-                        self.start.clone(),
-                        Plan::default(),
-                    )
-                }
-            };
-        violations.extend(
-            validate_plan(&self.inst, &state, &rest)
-                .iter()
-                .map(|v| format!("after the drive: {v:?}")),
-        );
-        timeline(&self.inst, p, &state, &rest, &mut rows);
+                self.remaining = o.plan;
+                self.validate("replanned");
+            }
+            Err(e) => {
+                self.violations.push(format!("replan: {e}"));
+                self.remaining = Plan::default();
+            }
+        }
+    }
+
+    /// The sol log's plan: the executed timeline, the repairs and replans, and any violation.
+    #[must_use]
+    pub fn finish(self) -> SolPlan {
+        let mut violations = self.violations;
+        if !self.remaining.steps.is_empty() {
+            violations.push(format!(
+                "not executed: {:?}",
+                self.remaining.describe(&self.inst)
+            ));
+        }
         SolPlan {
             status: self.status,
-            timeline: rows,
-            after_drive,
+            timeline: self.rows,
+            changes: self.changes,
             violations,
         }
     }
@@ -414,18 +653,24 @@ impl PlannedSol {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::science::SolScience;
+
+    fn at(lmst: &str) -> SolSeconds {
+        SolSeconds::parse_lmst(lmst).unwrap_or(SolSeconds(0))
+    }
 
     fn req(chain: bool) -> SolPlanRequest {
         SolPlanRequest {
-            drive_start: SolSeconds::parse_lmst("11:30").unwrap_or(SolSeconds(0)),
-            drive_end: SolSeconds::parse_lmst("14:05").unwrap_or(SolSeconds(0)),
+            drive_start: at("11:30"),
+            drive_end: at("14:05"),
             drive_rate_m_per_h: 100.0,
-            downlink: SolSeconds::parse_lmst("16:00"),
+            downlink: Some(at("16:00")),
             chain: chain.then_some(ChainDurations {
                 transfer_s: 74,
                 run_s: 32,
                 reboot_s: 120,
             }),
+            science: SolScience::default(),
         }
     }
 
@@ -433,32 +678,46 @@ mod tests {
         plan.timeline.iter().map(|s| s.activity.as_str()).collect()
     }
 
+    /// Execute every step as planned, except `actual(step)` (a different end, a disruption).
+    fn run(
+        mut exec: SolExecution,
+        mut actual: impl FnMut(&Step) -> Option<(i64, Option<Disruption>)>,
+    ) -> SolPlan {
+        let mut guard = 0;
+        while let Some(step) = exec.next_step() {
+            guard += 1;
+            assert!(guard < 200, "runaway execution");
+            let (end, d) = actual(&step).unwrap_or((step.end_s, None));
+            exec.complete(end, None, d);
+        }
+        exec.finish()
+    }
+
     #[test]
     fn onboard_sol_has_the_localization_chain_after_the_drive() {
         let p = SolPlanParams::default();
-        let planned = PlannedSol::new(&p, &req(true)).expect("plans");
-        let drive_end = i64::from(req(true).drive_end.0);
-        let plan = planned.finish(&p, drive_end);
+        let plan = run(SolExecution::new(&p, &req(true)).expect("plans"), |_| None);
         assert_eq!(plan.status, "optimal");
         assert!(plan.violations.is_empty(), "{:?}", plan.violations);
         let n = names(&plan);
-        let at = |name: &str| n.iter().position(|a| a.starts_with(name));
-        assert!(at("heating") < at("drive"));
-        assert!(at("drive") < at("post_drive_imaging"));
+        let pos = |name: &str| n.iter().position(|a| a.starts_with(name));
+        assert!(pos("heating") < pos("drive"));
+        assert!(pos("drive") < pos("post_drive_imaging"));
         for w in LOCALIZATION_CHAIN.windows(2) {
-            assert!(at(w[0]).is_some() && at(w[0]) < at(w[1]), "{n:?}");
+            assert!(pos(w[0]).is_some() && pos(w[0]) < pos(w[1]), "{n:?}");
         }
-        assert!(at("post_drive_imaging") < at("sunfind"));
+        assert!(pos("post_drive_imaging") < pos("sunfind"));
         assert!(n.contains(&"comm_pass"), "{n:?}");
-        assert_eq!(plan.after_drive, "as planned");
+        assert!(plan.changes.is_empty(), "{:?}", plan.changes);
     }
 
     #[test]
     fn an_early_drive_end_shifts_the_rest_and_stays_valid() {
         let p = SolPlanParams::default();
-        let planned = PlannedSol::new(&p, &req(true)).expect("plans");
-        let early = i64::from(SolSeconds::parse_lmst("12:10").map_or(0, |t| t.0));
-        let plan = planned.finish(&p, early);
+        let early = i64::from(at("12:10").0);
+        let plan = run(SolExecution::new(&p, &req(true)).expect("plans"), |s| {
+            (s.activity == "drive").then_some((early, None))
+        });
         assert!(plan.violations.is_empty(), "{:?}", plan.violations);
         let imaging = plan
             .timeline
@@ -466,20 +725,110 @@ mod tests {
             .find(|s| s.activity == "post_drive_imaging")
             .expect("imaging");
         assert_eq!(imaging.start_s, early, "{plan:?}");
-        assert!(
-            plan.after_drive.starts_with("shifted"),
-            "{}",
-            plan.after_drive
-        );
+        assert_eq!(plan.changes.len(), 1, "{:?}", plan.changes);
+        assert!(plan.changes[0].contains("shifted"), "{:?}", plan.changes);
         assert!(plan.timeline.iter().all(|s| s.energy_wh_after >= 0.0));
+    }
+
+    #[test]
+    fn a_late_chain_step_is_fed_back_and_shifts_what_follows() {
+        let p = SolPlanParams::default();
+        let mut planned_compare = 0;
+        let plan = run(SolExecution::new(&p, &req(true)).expect("plans"), |s| {
+            if s.activity == "compare_apply" {
+                planned_compare = s.start_s;
+            }
+            // The first co-processor run takes 5 minutes instead of 32 s.
+            (s.activity == "hbs_run_1").then_some((s.start_s + 300, None))
+        });
+        assert!(plan.violations.is_empty(), "{:?}", plan.violations);
+        let run1 = plan.timeline.iter().find(|s| s.activity == "hbs_run_1");
+        assert_eq!(run1.map(|s| s.end_s - s.start_s), Some(300));
+        let compare = plan.timeline.iter().find(|s| s.activity == "compare_apply");
+        assert!(compare.is_some_and(|c| c.start_s == planned_compare));
+        assert!(
+            plan.changes.iter().any(|c| c.contains("hbs_run_1")),
+            "{:?}",
+            plan.changes
+        );
+    }
+
+    #[test]
+    fn a_fault_cancels_the_rest_of_the_drive_and_replans() {
+        let p = SolPlanParams::default();
+        let mut r = req(true);
+        r.science.split_at_m = vec![75.0, 150.0];
+        let exec = SolExecution::new(&p, &r).expect("plans");
+        let plan = run(exec, |s| {
+            (s.segment == Some((0, 3))).then(|| {
+                (
+                    s.start_s + 600,
+                    Some(Disruption {
+                        reason: "NO_PATH after 16.7 m".into(),
+                        cancel: vec!["drive".into()],
+                        driven_m: Some(16.7),
+                    }),
+                )
+            })
+        });
+        assert!(plan.violations.is_empty(), "{:?}", plan.violations);
+        let n = names(&plan);
+        assert_eq!(
+            n.iter().filter(|a| a.starts_with("drive")).count(),
+            1,
+            "{n:?}"
+        );
+        assert!(
+            n.contains(&"post_drive_imaging") && n.contains(&"compare_apply"),
+            "{n:?}"
+        );
+        assert!(
+            plan.changes
+                .iter()
+                .any(|c| c.contains("NO_PATH") && c.contains("drive#2/3")),
+            "{:?}",
+            plan.changes
+        );
+    }
+
+    #[test]
+    fn an_injected_goal_is_planned_from_the_current_state() {
+        let p = SolPlanParams::default();
+        let mut exec = SolExecution::new(&p, &req(false)).expect("plans");
+        // Run heating and the drive, then a target is revealed.
+        for _ in 0..2 {
+            let s = exec.next_step().expect("step");
+            exec.complete(s.end_s, None, None);
+        }
+        let mut target = Activity::task("mastcam-new", 1_200, [0, 70_000], 35.0, 0.0);
+        target.campaign = Some("outcrop".into());
+        let campaign = Campaign {
+            id: "outcrop".into(),
+            intent: planner::CampaignIntent::GoalSet,
+            tier: 1,
+            min_count: 0,
+            max_count: 1,
+            utility: 10.0,
+            decay: 1.0,
+        };
+        let window = planning_window(&p, req(false).drive_start, req(false).drive_end);
+        target.earliest_start_s = window[0];
+        target.latest_start_s = window[1] - 1_200;
+        exec.inject(
+            target,
+            Some(campaign),
+            "autonomous science flagged a target",
+        );
+        let plan = run(exec, |_| None);
+        assert!(plan.violations.is_empty(), "{:?}", plan.violations);
+        assert!(names(&plan).contains(&"mastcam-new"), "{:?}", names(&plan));
+        assert!(plan.changes.iter().any(|c| c.contains("mastcam-new added")));
     }
 
     #[test]
     fn ground_sol_has_no_chain() {
         let p = SolPlanParams::default();
-        let plan = PlannedSol::new(&p, &req(false))
-            .expect("plans")
-            .finish(&p, i64::from(req(false).drive_end.0));
+        let plan = run(SolExecution::new(&p, &req(false)).expect("plans"), |_| None);
         assert!(!names(&plan).contains(&"sunfind"));
         assert!(plan.violations.is_empty(), "{:?}", plan.violations);
     }

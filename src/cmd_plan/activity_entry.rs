@@ -71,12 +71,18 @@ pub(super) fn drive(
             v
         }
     };
+    let latest_end_s = d
+        .latest_end_lmst
+        .as_deref()
+        .map(|t| c.lmst(&format!("{f}.latest_end_lmst"), t))
+        .transpose()?;
     Ok(Drive {
         length_m,
         rate_m_per_h,
         min_segment_s,
         max_segments,
         split_at_m,
+        latest_end_s,
     })
 }
 

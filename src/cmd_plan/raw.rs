@@ -60,6 +60,7 @@ pub(super) struct RawDrive {
     pub(super) min_segment_min: Option<f64>,
     pub(super) max_segments: Option<i64>,
     pub(super) split_at_m: Option<Vec<f64>>,
+    pub(super) latest_end_lmst: Option<String>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -97,4 +98,30 @@ pub(super) struct RawTemplate {
     pub(super) data_mb: Option<f64>,
     #[serde(default)]
     pub(super) preconditions: Vec<String>,
+}
+
+/// A simulator scenario's `[science]` section: targets on the map and campaign intents in the
+/// campaign-file schema.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawScience {
+    #[serde(default)]
+    pub(super) targets: Vec<RawTarget>,
+    #[serde(default)]
+    pub(super) campaigns: Vec<RawCampaign>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawTarget {
+    pub(super) id: String,
+    #[serde(default)]
+    pub(super) name: String,
+    pub(super) position_m: [f64; 2],
+    pub(super) within_m: f64,
+    pub(super) duration_min: f64,
+    pub(super) power_w: f64,
+    pub(super) data_mb: Option<f64>,
+    pub(super) revealed_sol: Option<u32>,
+    pub(super) revealed_lmst: Option<String>,
 }

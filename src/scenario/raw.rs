@@ -28,6 +28,8 @@ pub struct RawScenario {
     pub(super) route: RawRoute,
     pub(super) sols: Vec<RawSol>,
     #[serde(default)]
+    pub(super) science: crate::cmd_plan::RawScience,
+    #[serde(default)]
     pub(super) expect: Vec<RawExpectation>,
 }
 

@@ -1,0 +1,504 @@
+//! One drive sol, executed: the sol's plan ([`crate::sol_plan`]) step by step — drive
+//! segments through AutoNav, observations against the rover's true position, the onboard
+//! localization chain through the co-processor model — with each step's actual end fed back
+//! so the plan is repaired or replanned.
+//!
+//! What comes back to the planner:
+//!
+//! | step | actual end | disruption (full replan) |
+//! |---|---|---|
+//! | drive segment | start + AutoNav's driving time | a fault, the end of the route or the drive budget ends the drive before its last segment: the rest of the drive is cancelled |
+//! | `hbs_transfer` … `compare_apply` | the co-processor log's event times (statistical localizer: as planned) | the localization is lost: the chain's steps that never ran are cancelled |
+//! | a target observation | as planned | — (out of reach: logged as failed) |
+//! | a new target revealed | — | added to the plan before the next step |
+
+use rand_chacha::ChaCha8Rng;
+
+use crate::astar::AStar;
+use crate::autonav::{DriveContext, DriveLimits, DriveResult, RoverState, VoSource, drive_sol};
+use crate::campaign::Campaign;
+use crate::localizer::{ImageryLocalizer, LocalizationResult, OnboardLocalizer};
+use crate::outcome::{ActivityStep, LocalizationEvent};
+use crate::pose::estimate_error_m;
+use crate::science::{Reach, ScienceProgress, SolContext};
+use crate::sol_plan::{
+    ChainDurations, Disruption, LOCALIZATION_CHAIN, SolExecution, SolPlan, SolPlanRequest, Step,
+    planned_drive_m, planning_window,
+};
+use crate::time::SolSeconds;
+
+/// Planned durations of the onboard localization chain: the co-processor model's settings,
+/// with the transfer of a flight-size input set (as measured by `localization::onboard`).
+pub(crate) fn chain_durations(localizer: &OnboardLocalizer) -> ChainDurations {
+    let hbs = match localizer {
+        OnboardLocalizer::Imagery(i) => i.settings.hbs,
+        OnboardLocalizer::Statistical(_) => localization::hbs::HbsParams::default(),
+    };
+    let run_s = match localizer {
+        OnboardLocalizer::Imagery(i) => {
+            i.settings.hbs_slowdown * localization::onboard::MEASURED_FLIGHT_SIZE_RUN_S
+        }
+        OnboardLocalizer::Statistical(_) => hbs.run_s,
+    };
+    ChainDurations {
+        transfer_s: (localization::onboard::FLIGHT_SIZE_INPUT_BYTES as f64 / hbs.link_bytes_per_s)
+            .ceil() as i64,
+        run_s: run_s.ceil() as i64,
+        reboot_s: hbs.reboot_s.ceil() as i64,
+    }
+}
+
+/// Apply a statistical-model localization result to `state`.
+fn statistical_localization(
+    result: LocalizationResult,
+    c: &Campaign,
+    state: &mut RoverState,
+    start: SolSeconds,
+) -> LocalizationEvent {
+    let mut event = LocalizationEvent {
+        kind: "onboard",
+        localizer: "statistical",
+        applied: false,
+        reason: None,
+        error_m: None,
+        matched_error_m: None,
+        sigma_m: None,
+        search_radius_m: None,
+        uncertainty_after_m: 0.0,
+        start_lmst: Some(start.lmst()),
+        duration_s: None,
+        steps: Vec::new(),
+    };
+    match result {
+        LocalizationResult::Accepted { error_m, sigma_m } => {
+            state.estimate.position_m =
+                state.truth.position_m + nalgebra::Vector2::new(error_m[0], error_m[1]);
+            state
+                .uncertainty
+                .reset_onboard(sigma_m, c.operator_margin_m);
+            state.clear_path();
+            event.applied = true;
+            event.error_m = Some(error_m[0].hypot(error_m[1]));
+            event.sigma_m = Some(sigma_m);
+        }
+        LocalizationResult::Rejected { reason } => event.reason = Some(reason.into()),
+    }
+    event.uncertainty_after_m = state.uncertainty.radius_m(&c.model);
+    event
+}
+
+/// Render the post-drive imagery at the true position, match it from the estimate through the
+/// co-processor model, and apply the result to `state` if it passed every check.
+fn imagery_localization(
+    loc: &ImageryLocalizer,
+    c: &Campaign,
+    state: &mut RoverState,
+    start: SolSeconds,
+    sol_seed: u64,
+) -> LocalizationEvent {
+    use localization::onboard::{OnboardRequest, run_onboard};
+    let truth = state.truth.position_m;
+    let estimate = state.estimate.position_m;
+    let request = OnboardRequest {
+        truth_m: [truth.x, truth.y],
+        prior_m: [estimate.x, estimate.y],
+        uncertainty_m: state.uncertainty.radius_m(&c.model),
+        // One world and one orbital map per scenario; the imaging and upsets change each sol.
+        truth_seed: maps::procedural::noise::sub_seed(c.seed, 0x7275_7468),
+        orbital_seed: maps::procedural::noise::sub_seed(c.seed, 0x6f72_6269),
+        sol_seed,
+    };
+    let run = run_onboard(&loc.layers, &request, &loc.settings);
+    let at = |t_s: f64| SolSeconds(start.0 + t_s.round() as u32).lmst();
+    let mut event = LocalizationEvent {
+        kind: "onboard",
+        localizer: loc.settings.matcher.method.name(),
+        applied: false,
+        reason: run.lost_reason.clone(),
+        error_m: None,
+        matched_error_m: run
+            .matched
+            .as_ref()
+            .map(|m| (m.position_m[0] - truth.x).hypot(m.position_m[1] - truth.y)),
+        sigma_m: None,
+        search_radius_m: Some(run.search_radius_m),
+        uncertainty_after_m: 0.0,
+        start_lmst: Some(start.lmst()),
+        duration_s: Some(run.log.duration_s),
+        steps: run
+            .log
+            .events
+            .iter()
+            .map(|e| ActivityStep {
+                lmst: Some(at(e.t_s)),
+                t_s: e.t_s,
+                step: e.step,
+                detail: e.detail.clone(),
+            })
+            .collect(),
+    };
+    if let Some(fix) = run.applied {
+        state.estimate.position_m = nalgebra::Vector2::new(fix.position_m[0], fix.position_m[1]);
+        state
+            .uncertainty
+            .reset_onboard(fix.sigma_m, c.operator_margin_m);
+        state.clear_path();
+        event.applied = true;
+        event.error_m = Some((fix.position_m[0] - truth.x).hypot(fix.position_m[1] - truth.y));
+        event.sigma_m = Some(fix.sigma_m);
+    }
+    event.uncertainty_after_m = state.uncertainty.radius_m(&c.model);
+    event
+}
+
+/// The rover's estimate, then the route waypoints it has still to reach.
+fn route_ahead(c: &Campaign, rover: &RoverState) -> Vec<[f64; 2]> {
+    let est = rover.estimate.position_m;
+    let mut out = vec![[est.x, est.y]];
+    out.extend(c.route.iter().skip(rover.next_waypoint).copied());
+    out
+}
+
+/// What one drive sol did.
+#[derive(Clone, Debug)]
+pub(crate) struct SolRun {
+    /// The drive, all segments together.
+    pub drive: DriveResult,
+    /// Uncertainty radius when the drive ended, before any localization, metres.
+    pub end_uncertainty_m: f64,
+    /// Estimate-to-truth distance when the drive ended, metres.
+    pub truth_error_m: f64,
+    /// The onboard localization, if the strategy ran one.
+    pub localization: Option<LocalizationEvent>,
+    /// The sol's plan as executed.
+    pub plan: SolPlan,
+}
+
+/// The sol's environment: what [`execute_sol`] drives, localizes and observes with.
+pub(crate) struct SolEnv<'a> {
+    /// The campaign.
+    pub c: &'a Campaign,
+    /// AutoNav's context.
+    pub ctx: &'a DriveContext<'a>,
+    /// The sol number.
+    pub sol: u32,
+    /// Whether the strategy localizes onboard after the drive.
+    pub onboard: bool,
+    /// The sol's drive budget (window time; a replay's historic distance).
+    pub limits: DriveLimits,
+    /// Where VO success comes from.
+    pub vo: VoSource,
+}
+
+/// The mutable state a sol runs on.
+pub(crate) struct SolState<'a> {
+    /// The rover.
+    pub rover: &'a mut RoverState,
+    /// The science campaigns' progress.
+    pub progress: &'a mut ScienceProgress,
+    /// The strategy's random stream.
+    pub rng: &'a mut ChaCha8Rng,
+    /// A* scratch.
+    pub astar: &'a mut AStar,
+}
+
+/// Add a drive segment's result to the sol's.
+fn merge(total: &mut DriveResult, mut seg: DriveResult) {
+    if let Some(f) = &mut seg.fault {
+        f.after_m += total.distance_m;
+    }
+    total.distance_m += seg.distance_m;
+    total.d_vo_m += seg.d_vo_m;
+    total.d_novo_m += seg.d_novo_m;
+    total.drive_time_s += seg.drive_time_s;
+    total.plans += seg.plans;
+    total.reached_goal |= seg.reached_goal;
+    total.fault = total.fault.take().or(seg.fault);
+    let skip = usize::from(!total.path_m.is_empty());
+    total.path_m.extend(seg.path_m.into_iter().skip(skip));
+}
+
+/// Run the localization and map its log onto the chain: each chain step's actual end
+/// (absolute s; `None` if it never ran) for the steps after SunFind.
+fn localize(
+    env: &SolEnv<'_>,
+    st: &mut SolState<'_>,
+    start_s: i64,
+    compare_apply_s: i64,
+) -> (LocalizationEvent, [Option<i64>; LOCALIZATION_CHAIN.len()]) {
+    let c = env.c;
+    let start = SolSeconds(start_s.clamp(0, i64::from(u32::MAX)) as u32);
+    let event = match &c.localizer {
+        OnboardLocalizer::Statistical(model) => {
+            statistical_localization(model.localize(st.rng), c, st.rover, start)
+        }
+        OnboardLocalizer::Imagery(loc) => {
+            let sol_seed = rand::RngExt::random::<u64>(st.rng);
+            imagery_localization(loc, c, st.rover, start, sol_seed)
+        }
+    };
+    let mut ends = [None; LOCALIZATION_CHAIN.len()];
+    if event.steps.is_empty() {
+        return (event, ends);
+    }
+    // The co-processor log stamps each step when it ends; the compare and apply on the rover
+    // computer follow the transfer back and take the planned time.
+    let at = |name: &str| {
+        event
+            .steps
+            .iter()
+            .find(|e| e.step == name)
+            .map(|e| start_s + e.t_s.round() as i64)
+    };
+    ends[1] = at("TRANSFER_TO_HBS");
+    ends[2] = at("RUN_1");
+    ends[3] = at("REBOOT");
+    ends[4] = at("RUN_2");
+    let ran_both = ends[4].is_some()
+        && event
+            .steps
+            .iter()
+            .any(|e| e.step == "COMPARE" || e.step == "MOB_APPLY_ONBD_LOCALIZATION");
+    if ran_both {
+        let last = event.steps.last().map_or(0.0, |e| e.t_s);
+        ends[5] = Some(start_s + last.round() as i64 + compare_apply_s);
+    }
+    (event, ends)
+}
+
+/// Execute one drive sol's plan. `request` is the sol's plan request without science; the
+/// campaign's science candidates are added here.
+pub(crate) fn execute_sol(
+    env: &SolEnv<'_>,
+    st: &mut SolState<'_>,
+    mut request: SolPlanRequest,
+) -> SolRun {
+    let c = env.c;
+    let window_s = planning_window(&c.sol_plan, request.drive_start, request.drive_end);
+    request.science = c.science.for_sol(
+        st.progress,
+        &SolContext {
+            sol: env.sol,
+            window_s,
+            drive_start_s: i64::from(request.drive_start.0),
+            drive_m: planned_drive_m(&request),
+        },
+        &route_ahead(c, st.rover),
+    );
+    let mut run = SolRun {
+        drive: DriveResult::default(),
+        end_uncertainty_m: 0.0,
+        truth_error_m: 0.0,
+        localization: None,
+        plan: SolPlan::default(),
+    };
+    let mut drive_ended = false;
+    let end_drive = |ended: &mut bool, run: &mut SolRun, rover: &RoverState| {
+        if !*ended {
+            *ended = true;
+            run.end_uncertainty_m = rover.uncertainty.radius_m(&c.model);
+            run.truth_error_m = estimate_error_m(&rover.truth, &rover.estimate);
+        }
+    };
+    let mut exec = match SolExecution::new(&c.sol_plan, &request) {
+        Ok(exec) => exec,
+        Err(e) => {
+            // No plan: drive the window, then localize right after it.
+            let r = drive_sol(env.ctx, st.rover, env.limits, env.vo, st.rng, st.astar);
+            merge(&mut run.drive, r);
+            end_drive(&mut drive_ended, &mut run, st.rover);
+            if env.onboard {
+                let now = i64::from(request.drive_start.0) + run.drive.drive_time_s.round() as i64;
+                run.localization = Some(localize(env, st, now, c.sol_plan.compare_apply_s).0);
+            }
+            run.plan = SolPlan::not_planned(&e);
+            return run;
+        }
+    };
+    let mut chain_ends = [None; LOCALIZATION_CHAIN.len()];
+    let mut now_s = window_s[0];
+    let mut considered: Vec<String> = Vec::new();
+    let mut guard = 0usize;
+    while let Some(step) = exec.next_step() {
+        guard += 1;
+        if guard > 10_000 {
+            break;
+        }
+        if inject_revealed(env, st, &mut exec, &step, &mut considered) {
+            continue;
+        }
+        now_s = step.end_s;
+        let chain_at = LOCALIZATION_CHAIN.iter().position(|&a| a == step.activity);
+        if step.activity == "drive" {
+            if drive_ended {
+                exec.complete(step.start_s + 1, None, None);
+                continue;
+            }
+            let seg = drive_segment(env, st, &mut run, &step);
+            now_s = seg.0;
+            if seg.1.is_some() {
+                end_drive(&mut drive_ended, &mut run, st.rover);
+            }
+            exec.complete(seg.0, seg.2, seg.1);
+        } else if let Some(ci) = chain_at.filter(|&ci| ci >= 1 && env.onboard) {
+            if ci == 1 {
+                end_drive(&mut drive_ended, &mut run, st.rover);
+                let (event, ends) = localize(env, st, step.start_s, c.sol_plan.compare_apply_s);
+                chain_ends = ends;
+                if event.steps.is_empty() {
+                    // The statistical model has no co-processor log: the chain runs as planned.
+                    chain_ends = [None; LOCALIZATION_CHAIN.len()];
+                }
+                run.localization = Some(event);
+            }
+            let applied = run.localization.as_ref().is_some_and(|l| l.applied);
+            let modelled = run
+                .localization
+                .as_ref()
+                .is_some_and(|l| !l.steps.is_empty());
+            let end = if modelled {
+                chain_ends[ci].unwrap_or(step.start_s + 1)
+            } else {
+                step.end_s
+            };
+            // The chain's last step that ran: a lost localization replans what follows.
+            let last_ran = !modelled && ci + 1 == LOCALIZATION_CHAIN.len()
+                || modelled && chain_ends[ci + 1..].iter().all(Option::is_none);
+            let disruption = (last_ran && !applied).then(|| Disruption {
+                reason: format!(
+                    "localization lost: {}",
+                    run.localization
+                        .as_ref()
+                        .and_then(|l| l.reason.clone())
+                        .unwrap_or_else(|| "rejected".into())
+                ),
+                cancel: LOCALIZATION_CHAIN[ci + 1..]
+                    .iter()
+                    .map(|s| (*s).to_string())
+                    .collect(),
+                driven_m: None,
+            });
+            now_s = end;
+            exec.complete(end, None, disruption);
+        } else {
+            let outcome = observe(env, st, &step);
+            exec.complete(step.end_s, outcome, None);
+        }
+    }
+    end_drive(&mut drive_ended, &mut run, st.rover);
+    if env.onboard && run.localization.is_none() {
+        // The plan lost the chain (a replan could not fit it): localize when the sol's
+        // activities end, as the ground would command it.
+        run.localization = Some(localize(env, st, now_s, c.sol_plan.compare_apply_s).0);
+    }
+    st.progress.odometer_m += run.drive.distance_m;
+    run.plan = exec.finish();
+    run
+}
+
+/// Drive one segment: its actual end (s), the disruption if the drive stopped before its
+/// last segment, and the outcome note.
+fn drive_segment(
+    env: &SolEnv<'_>,
+    st: &mut SolState<'_>,
+    run: &mut SolRun,
+    step: &Step,
+) -> (i64, Option<Disruption>, Option<String>) {
+    let (j, k) = step.segment.unwrap_or((0, 1));
+    let last = j + 1 == k;
+    let left_m = env.limits.max_distance_m.map(|m| m - run.drive.distance_m);
+    let limits = DriveLimits {
+        max_distance_m: match (last, left_m) {
+            (true, m) => m,
+            (false, None) => Some(step.drive_m),
+            (false, Some(m)) => Some(step.drive_m.min(m)),
+        },
+        max_time_s: env.limits.max_time_s.map(|t| t - run.drive.drive_time_s),
+    };
+    let r = drive_sol(env.ctx, st.rover, limits, env.vo, st.rng, st.astar);
+    let end_s = step.start_s + r.drive_time_s.round() as i64;
+    let short = r.distance_m < step.drive_m - 0.5;
+    merge(&mut run.drive, r);
+    let d = &run.drive;
+    let reason = if let Some(f) = &d.fault {
+        Some(format!("{} after {:.1} m", f.kind.name(), f.after_m))
+    } else if d.reached_goal {
+        Some(format!("end of the route after {:.1} m", d.distance_m))
+    } else if short && !last {
+        Some(format!("drive budget used up after {:.1} m", d.distance_m))
+    } else {
+        None
+    };
+    let note = reason.clone();
+    let disruption = reason
+        .filter(|_| !last || d.fault.is_some())
+        .map(|reason| Disruption {
+            reason,
+            cancel: vec!["drive".into()],
+            driven_m: Some(d.distance_m),
+        });
+    (end_s, disruption, note)
+}
+
+/// Run a science observation (or any other activity): targets are judged from the true
+/// position; campaign members count towards their campaign. Returns the timeline note.
+fn observe(env: &SolEnv<'_>, st: &mut SolState<'_>, step: &Step) -> Option<String> {
+    let science = &env.c.science;
+    let campaign = science.campaign_of(&step.activity)?.to_string();
+    if let Some(t) = science.target(&step.activity) {
+        let truth = st.rover.truth.position_m;
+        let d = (t.position_m[0] - truth.x).hypot(t.position_m[1] - truth.y);
+        if d <= t.within_m {
+            st.progress.achieved.push(t.id().to_string());
+            *st.progress.done.entry(campaign).or_default() += 1;
+            Some(format!("observed: {d:.1} m from the target"))
+        } else {
+            *st.progress.failed.entry(campaign).or_default() += 1;
+            Some(format!(
+                "out of reach: {d:.1} m from the target (needs {:.1} m)",
+                t.within_m
+            ))
+        }
+    } else {
+        *st.progress.done.entry(campaign).or_default() += 1;
+        Some("done".into())
+    }
+}
+
+/// Targets revealed by now: add each one in reach to the plan (one at a time; `true` if the
+/// plan changed).
+fn inject_revealed(
+    env: &SolEnv<'_>,
+    st: &SolState<'_>,
+    exec: &mut SolExecution,
+    step: &Step,
+    considered: &mut Vec<String>,
+) -> bool {
+    let science = &env.c.science;
+    let Some(goal_set) = science.offered_goal_set(st.progress) else {
+        return false;
+    };
+    let window_end = exec.window_s()[1];
+    for t in &science.targets {
+        let id = t.id();
+        if t.revealed.is_none_or(|(sol, _)| sol != env.sol)
+            || !t.revealed_by(env.sol, step.start_s)
+            || considered.iter().any(|c| c == id)
+            || exec.has_activity(id)
+            || st.progress.achieved.iter().any(|a| a == id)
+        {
+            continue;
+        }
+        considered.push(id.to_string());
+        let ahead = route_ahead(env.c, st.rover);
+        let drive_left = exec.drive_left_m();
+        if t.reach(&ahead, drive_left) == Reach::OutOfReach {
+            continue;
+        }
+        if let Some(a) = t.candidate(&goal_set.id, [step.start_s, window_end], &ahead, drive_left) {
+            exec.inject(a, Some(goal_set), "autonomous science revealed a target");
+            return true;
+        }
+    }
+    false
+}

@@ -1,0 +1,228 @@
+//! A simulator scenario's `[science]` section → [`sim::science::Science`].
+//!
+//! Targets are goal-set observations at map positions; `[[science.campaigns]]` use the
+//! campaign-file schema (`intent = "goal_set" | "periodic" | "state_based"`) and are checked
+//! by the same code as `solsim plan` files. The simulator builds each sol's instances itself,
+//! so a periodic campaign needs `first_due_lmst` (the first due time of every sol) and takes
+//! no `until_lmst` (each sol's window bounds it), and the goal set lists no `members`: every
+//! target counts towards it.
+
+use std::path::Path;
+
+use planner::{Activity, CampaignIntent};
+use sim::science::{Periodic, Science, StateBased, Target};
+use sim::time::SolSeconds;
+
+use super::campaign_entry::campaign;
+use super::check::Check;
+use super::raw::RawScience;
+use crate::error::ScenarioError;
+
+/// The sol plan's own activity ids (`sim::sol_plan`): no target or template may take them.
+const RESERVED: [&str; 10] = [
+    "heating",
+    "drive",
+    "post_drive_imaging",
+    "comm_pass",
+    "sunfind",
+    "hbs_transfer",
+    "hbs_run_1",
+    "hbs_reboot",
+    "hbs_run_2",
+    "compare_apply",
+];
+
+/// A whole sol, s: the window the campaign checks run against.
+const SOL_S: i64 = 88_775;
+
+/// Validate `[science]`; `on_map(p)` says whether a position is on the map, `extent` how to
+/// say where the map is.
+///
+/// # Errors
+/// A [`ScenarioError`] naming the file and the first `science.…` field at fault.
+pub fn resolve_science(
+    path: &Path,
+    raw: &RawScience,
+    on_map: &dyn Fn([f64; 2]) -> bool,
+    extent: &str,
+) -> Result<Science, ScenarioError> {
+    let c = Check { path };
+    let mut science = Science::default();
+    for (i, t) in raw.targets.iter().enumerate() {
+        let f = format!("science.targets[{i}]");
+        c.id(&format!("{f}.id"), &t.id)?;
+        if raw.targets[..i].iter().any(|o| o.id == t.id) {
+            return Err(c.err(
+                &format!("{f}.id"),
+                "an id no other target uses",
+                format!("{:?}", t.id),
+            ));
+        }
+        if RESERVED.contains(&t.id.as_str()) {
+            return Err(c.err(
+                &format!("{f}.id"),
+                format!(
+                    "an id not used by the sol's own activities ({})",
+                    RESERVED.join(", ")
+                ),
+                format!("{:?}", t.id),
+            ));
+        }
+        let [x, y] = t.position_m;
+        if !(x.is_finite() && y.is_finite() && on_map(t.position_m)) {
+            return Err(c.err(
+                &format!("{f}.position_m"),
+                format!("a point on the map ({extent})"),
+                format!("[{x}, {y}]"),
+            ));
+        }
+        let mut a = Activity::task(
+            t.id.clone(),
+            c.minutes(&format!("{f}.duration_min"), t.duration_min)?,
+            [0, 0],
+            c.non_negative(&format!("{f}.power_w"), t.power_w, "watts")?,
+            0.0,
+        );
+        a.name = t.name.clone();
+        a.data_mb = c.non_negative(
+            &format!("{f}.data_mb"),
+            t.data_mb.unwrap_or(0.0),
+            "megabytes",
+        )?;
+        let revealed = match (t.revealed_sol, &t.revealed_lmst) {
+            (None, None) => None,
+            (Some(sol), Some(lmst)) => Some((
+                sol,
+                SolSeconds(c.lmst(&format!("{f}.revealed_lmst"), lmst)? as u32),
+            )),
+            (Some(_), None) => {
+                return Err(c.err(
+                    &format!("{f}.revealed_lmst"),
+                    "the time of the reveal, \"HH:MM\" LMST (with revealed_sol)",
+                    "none",
+                ));
+            }
+            (None, Some(_)) => {
+                return Err(c.err(
+                    &format!("{f}.revealed_sol"),
+                    "the sol of the reveal (with revealed_lmst)",
+                    "none",
+                ));
+            }
+        };
+        science.targets.push(Target {
+            activity: a,
+            position_m: t.position_m,
+            within_m: c.positive(&format!("{f}.within_m"), t.within_m, "metres")?,
+            revealed,
+        });
+    }
+    let targets: Vec<Activity> = science.targets.iter().map(|t| t.activity.clone()).collect();
+    for (j, rc) in raw.campaigns.iter().enumerate() {
+        let f = format!("science.campaigns[{j}]");
+        c.id(&format!("{f}.id"), &rc.id)?;
+        if raw.campaigns[..j].iter().any(|o| o.id == rc.id) {
+            return Err(c.err(
+                &format!("{f}.id"),
+                "an id no other campaign uses",
+                format!("{:?}", rc.id),
+            ));
+        }
+        if rc.members.is_some() {
+            return Err(c.err(
+                &format!("{f}.members"),
+                "no members: every [[science.targets]] counts towards the goal set",
+                "a list",
+            ));
+        }
+        if rc.until_lmst.is_some() {
+            return Err(c.err(
+                &format!("{f}.until_lmst"),
+                "no until_lmst: each sol's planning window bounds a periodic campaign",
+                "a value",
+            ));
+        }
+        if rc.intent == "periodic" && rc.first_due_lmst.is_none() {
+            return Err(c.err(
+                &format!("{f}.first_due_lmst"),
+                "the first due time of every sol, \"HH:MM\" LMST",
+                "none",
+            ));
+        }
+        // The campaign-file checks, over a whole sol and one cadence of driving.
+        let one_cadence_m = rc.every_m.unwrap_or(1.0);
+        let (mut campaign, instances) = campaign(&c, &f, rc, (0, SOL_S), one_cadence_m, &targets)?;
+        match campaign.intent {
+            CampaignIntent::GoalSet => {
+                if science.goal_set.is_some() {
+                    return Err(c.err(
+                        &format!("{f}.intent"),
+                        "at most one goal_set campaign (the targets' campaign)",
+                        "a second goal_set",
+                    ));
+                }
+                if rc.max_count.is_none() {
+                    campaign.max_count = science.targets.len().max(1) as u32;
+                }
+                science.goal_set = Some(campaign);
+            }
+            CampaignIntent::Periodic { .. } => {
+                let first_due = rc
+                    .first_due_lmst
+                    .as_deref()
+                    .map_or(Ok(0), |t| c.lmst(&format!("{f}.first_due_lmst"), t))?;
+                let Some(mut template) = instances.into_iter().next() else {
+                    continue;
+                };
+                template.id = rc
+                    .template
+                    .as_ref()
+                    .and_then(|t| t.id.clone())
+                    .unwrap_or_else(|| rc.id.clone());
+                template.campaign = None;
+                reserved(&c, &f, &template.id)?;
+                science.periodic.push(Periodic {
+                    campaign,
+                    first_due: SolSeconds(first_due as u32),
+                    template,
+                });
+            }
+            CampaignIntent::StateBased { .. } => {
+                let Some(mut template) = instances.into_iter().next() else {
+                    continue;
+                };
+                template.id = rc
+                    .template
+                    .as_ref()
+                    .and_then(|t| t.id.clone())
+                    .unwrap_or_else(|| rc.id.clone());
+                template.campaign = None;
+                template.driven_window_m = None;
+                reserved(&c, &f, &template.id)?;
+                science.state_based.push(StateBased { campaign, template });
+            }
+        }
+    }
+    if !science.targets.is_empty() && science.goal_set.is_none() {
+        return Err(c.err(
+            "science.campaigns",
+            "a goal_set campaign for the [[science.targets]] (tier, utility, counts)",
+            "none",
+        ));
+    }
+    Ok(science)
+}
+
+fn reserved(c: &Check<'_>, f: &str, id: &str) -> Result<(), ScenarioError> {
+    if RESERVED.contains(&id) {
+        return Err(c.err(
+            &format!("{f}.template.id"),
+            format!(
+                "an id not used by the sol's own activities ({})",
+                RESERVED.join(", ")
+            ),
+            format!("{id:?}"),
+        ));
+    }
+    Ok(())
+}
