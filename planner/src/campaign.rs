@@ -74,3 +74,18 @@ pub fn state_based_instances(
         })
         .collect()
 }
+
+/// Clip each activity's start window to a sol window `[start_s, end_s]` (it must start at or
+/// after `start_s` and end by `end_s`); drop those left with no start time. Use it on
+/// [`periodic_instances`], whose `± tolerance` windows may reach outside the sol.
+#[must_use]
+pub fn clip_to_window(activities: Vec<Activity>, start_s: i64, end_s: i64) -> Vec<Activity> {
+    activities
+        .into_iter()
+        .filter_map(|mut a| {
+            a.earliest_start_s = a.earliest_start_s.max(start_s);
+            a.latest_start_s = a.latest_start_s.min(end_s - a.duration_s());
+            (a.latest_start_s >= a.earliest_start_s).then_some(a)
+        })
+        .collect()
+}

@@ -13,7 +13,7 @@
 //! | [`PlanOutcome`], [`Plan`], [`Value`] | the best plan, its lexicographic value, the best bound and the gap |
 //! | [`validate_plan`] | an independent checker listing every [`Violation`] |
 //! | [`repair`], [`RepairOutcome`], [`Blocker`] | shift a plan after a slip, or say why a replan is needed |
-//! | [`periodic_instances`], [`state_based_instances`] | build periodic and state-based campaign instances |
+//! | [`periodic_instances`], [`state_based_instances`], [`clip_to_window`] | build periodic and state-based campaign instances; clip them to the sol |
 //! | [`generate`] | seeded random instances |
 //! | [`optimistic_bound`] | the bound the search prunes with, for tests and comparison |
 //!
@@ -117,7 +117,7 @@ mod validate;
 mod value;
 
 pub use bound::optimistic_bound;
-pub use campaign::{periodic_instances, state_based_instances};
+pub use campaign::{clip_to_window, periodic_instances, state_based_instances};
 pub use error::PlanError;
 pub use generate::{GeneratorSettings, b6_problem, generate};
 pub use instance::{CampaignCurve, Instance, Task, TaskId};

@@ -297,22 +297,18 @@ impl Science {
             else {
                 continue;
             };
-            let dur = p.template.duration_s();
-            let instances: Vec<Activity> = planner::periodic_instances(
-                &p.template,
-                &p.campaign.id,
-                i64::from(p.first_due.0),
-                period_s,
-                tolerance_s,
+            let instances = planner::clip_to_window(
+                planner::periodic_instances(
+                    &p.template,
+                    &p.campaign.id,
+                    i64::from(p.first_due.0),
+                    period_s,
+                    tolerance_s,
+                    end_s,
+                ),
+                start_s,
                 end_s,
-            )
-            .into_iter()
-            .filter_map(|mut a| {
-                a.earliest_start_s = a.earliest_start_s.max(start_s);
-                a.latest_start_s = a.latest_start_s.min(end_s - dur);
-                (a.latest_start_s >= a.earliest_start_s).then_some(a)
-            })
-            .collect();
+            );
             if !instances.is_empty() {
                 out.campaigns.push(Campaign {
                     max_count: instances.len() as u32,

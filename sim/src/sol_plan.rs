@@ -49,6 +49,20 @@ pub const LOCALIZATION_CHAIN: [&str; 6] = [
     "compare_apply",
 ];
 
+/// Every id the sol plan gives its own activities (science may not reuse them).
+pub const SOL_ACTIVITIES: [&str; 10] = [
+    "heating",
+    "drive",
+    "post_drive_imaging",
+    "comm_pass",
+    LOCALIZATION_CHAIN[0],
+    LOCALIZATION_CHAIN[1],
+    LOCALIZATION_CHAIN[2],
+    LOCALIZATION_CHAIN[3],
+    LOCALIZATION_CHAIN[4],
+    LOCALIZATION_CHAIN[5],
+];
+
 /// Settings of the per-sol plan (plain struct; units and defaults on each field).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct SolPlanParams {

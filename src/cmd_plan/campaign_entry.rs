@@ -33,20 +33,31 @@ fn template(
             ));
         }
     }
+    let mut a = task(c, &f, id, &t.name, t.duration_min, t.power_w, t.data_mb)?;
+    a.preconditions = t.preconditions.clone();
+    Ok(a)
+}
+
+/// A task activity from its fields at `{f}.duration_min`, `{f}.power_w` and `{f}.data_mb`
+/// (checked; windows left at 0 for the caller to set).
+pub(super) fn task(
+    c: &Check<'_>,
+    f: &str,
+    id: String,
+    name: &str,
+    duration_min: f64,
+    power_w: f64,
+    data_mb: Option<f64>,
+) -> Result<Activity, ScenarioError> {
     let mut a = Activity::task(
         id,
-        c.minutes(&format!("{f}.duration_min"), t.duration_min)?,
+        c.minutes(&format!("{f}.duration_min"), duration_min)?,
         [0, 0],
-        c.non_negative(&format!("{f}.power_w"), t.power_w, "watts")?,
+        c.non_negative(&format!("{f}.power_w"), power_w, "watts")?,
         0.0,
     );
-    a.name = t.name.clone();
-    a.data_mb = c.non_negative(
-        &format!("{f}.data_mb"),
-        t.data_mb.unwrap_or(0.0),
-        "megabytes",
-    )?;
-    a.preconditions = t.preconditions.clone();
+    a.name = name.to_string();
+    a.data_mb = c.non_negative(&format!("{f}.data_mb"), data_mb.unwrap_or(0.0), "megabytes")?;
     Ok(a)
 }
 
@@ -143,17 +154,12 @@ pub(super) fn campaign(
                 None => end_s,
             };
             let tpl = template(c, f, rc.template.as_ref(), &rc.id, activities)?;
-            let dur = tpl.duration_s();
             // Clip each instance's window to the sol; drop instances left with none.
-            let inst: Vec<Activity> =
-                planner::periodic_instances(&tpl, &rc.id, first_due, period_s, tolerance_s, until)
-                    .into_iter()
-                    .filter_map(|mut a| {
-                        a.earliest_start_s = a.earliest_start_s.max(start_s);
-                        a.latest_start_s = a.latest_start_s.min(end_s - dur);
-                        (a.latest_start_s >= a.earliest_start_s).then_some(a)
-                    })
-                    .collect();
+            let inst = planner::clip_to_window(
+                planner::periodic_instances(&tpl, &rc.id, first_due, period_s, tolerance_s, until),
+                start_s,
+                end_s,
+            );
             if inst.is_empty() {
                 return Err(c.err(
                     &format!("{f}.first_due_lmst"),

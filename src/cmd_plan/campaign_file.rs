@@ -368,6 +368,7 @@ mod tests {
             panic!("drive expected")
         };
         assert_eq!(d.split_at_m, [75.0, 150.0]);
+        assert_eq!(d.latest_end_s, None);
         let tau: Vec<&Activity> = p
             .activities
             .iter()
@@ -380,5 +381,29 @@ mod tests {
             Some("campaigns[1].template")
         );
         planner::Instance::new(p).unwrap();
+    }
+
+    #[test]
+    fn a_drive_window_end_reaches_the_problem_and_is_checked() {
+        let drive = |end: &str| {
+            format!(
+                "{SOL}[[activities]]\nid = \"d\"\npower_w = 1.0\n\
+                 drive = {{ length_m = 100.0, rate_m_per_h = 100.0, latest_end_lmst = \"{end}\" }}\n"
+            )
+        };
+        let f = resolve(&drive("14:00")).unwrap();
+        let ActivityKind::Drive(d) = &f.problem.activities[0].kind else {
+            panic!("drive expected")
+        };
+        assert_eq!(
+            d.latest_end_s,
+            Some(i64::from(SolSeconds::parse_lmst("14:00").unwrap().0))
+        );
+        let e = resolve(&drive("2pm")).unwrap_err().to_string();
+        assert!(e.contains("activities[0].drive.latest_end_lmst"), "{e}");
+        // An hour of driving cannot end by 09:30 in a window opening at 09:00.
+        let f = resolve(&drive("09:30")).unwrap();
+        let e = f.planner_error(planner::Instance::new(&f.problem).unwrap_err());
+        assert!(e.to_string().contains("latest_end_s"), "{e}");
     }
 }

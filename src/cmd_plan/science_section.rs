@@ -11,26 +11,13 @@ use std::path::Path;
 
 use planner::{Activity, CampaignIntent};
 use sim::science::{Periodic, Science, StateBased, Target};
+use sim::sol_plan::SOL_ACTIVITIES;
 use sim::time::SolSeconds;
 
-use super::campaign_entry::campaign;
+use super::campaign_entry::{campaign, task};
 use super::check::Check;
-use super::raw::RawScience;
+use super::raw::{RawCampaign, RawScience};
 use crate::error::ScenarioError;
-
-/// The sol plan's own activity ids (`sim::sol_plan`): no target or template may take them.
-const RESERVED: [&str; 10] = [
-    "heating",
-    "drive",
-    "post_drive_imaging",
-    "comm_pass",
-    "sunfind",
-    "hbs_transfer",
-    "hbs_run_1",
-    "hbs_reboot",
-    "hbs_run_2",
-    "compare_apply",
-];
 
 /// A whole sol, s: the window the campaign checks run against.
 const SOL_S: i64 = 88_775;
@@ -58,12 +45,12 @@ pub fn resolve_science(
                 format!("{:?}", t.id),
             ));
         }
-        if RESERVED.contains(&t.id.as_str()) {
+        if SOL_ACTIVITIES.contains(&t.id.as_str()) {
             return Err(c.err(
                 &format!("{f}.id"),
                 format!(
                     "an id not used by the sol's own activities ({})",
-                    RESERVED.join(", ")
+                    SOL_ACTIVITIES.join(", ")
                 ),
                 format!("{:?}", t.id),
             ));
@@ -76,18 +63,14 @@ pub fn resolve_science(
                 format!("[{x}, {y}]"),
             ));
         }
-        let mut a = Activity::task(
+        let a = task(
+            &c,
+            &f,
             t.id.clone(),
-            c.minutes(&format!("{f}.duration_min"), t.duration_min)?,
-            [0, 0],
-            c.non_negative(&format!("{f}.power_w"), t.power_w, "watts")?,
-            0.0,
-        );
-        a.name = t.name.clone();
-        a.data_mb = c.non_negative(
-            &format!("{f}.data_mb"),
-            t.data_mb.unwrap_or(0.0),
-            "megabytes",
+            &t.name,
+            t.duration_min,
+            t.power_w,
+            t.data_mb,
         )?;
         let revealed = match (t.revealed_sol, &t.revealed_lmst) {
             (None, None) => None,
@@ -171,35 +154,18 @@ pub fn resolve_science(
                     .first_due_lmst
                     .as_deref()
                     .map_or(Ok(0), |t| c.lmst(&format!("{f}.first_due_lmst"), t))?;
-                let Some(mut template) = instances.into_iter().next() else {
-                    continue;
-                };
-                template.id = rc
-                    .template
-                    .as_ref()
-                    .and_then(|t| t.id.clone())
-                    .unwrap_or_else(|| rc.id.clone());
-                template.campaign = None;
-                reserved(&c, &f, &template.id)?;
-                science.periodic.push(Periodic {
-                    campaign,
-                    first_due: SolSeconds(first_due as u32),
-                    template,
-                });
+                if let Some(template) = template_of(&c, &f, rc, instances)? {
+                    science.periodic.push(Periodic {
+                        campaign,
+                        first_due: SolSeconds(first_due as u32),
+                        template,
+                    });
+                }
             }
             CampaignIntent::StateBased { .. } => {
-                let Some(mut template) = instances.into_iter().next() else {
-                    continue;
-                };
-                template.id = rc
-                    .template
-                    .as_ref()
-                    .and_then(|t| t.id.clone())
-                    .unwrap_or_else(|| rc.id.clone());
-                template.campaign = None;
-                template.driven_window_m = None;
-                reserved(&c, &f, &template.id)?;
-                science.state_based.push(StateBased { campaign, template });
+                if let Some(template) = template_of(&c, &f, rc, instances)? {
+                    science.state_based.push(StateBased { campaign, template });
+                }
             }
         }
     }
@@ -213,16 +179,33 @@ pub fn resolve_science(
     Ok(science)
 }
 
-fn reserved(c: &Check<'_>, f: &str, id: &str) -> Result<(), ScenarioError> {
-    if RESERVED.contains(&id) {
+/// The instance template back from the first checked instance: its own id, no campaign and no
+/// window (the simulator sets those each sol).
+fn template_of(
+    c: &Check<'_>,
+    f: &str,
+    rc: &RawCampaign,
+    instances: Vec<Activity>,
+) -> Result<Option<Activity>, ScenarioError> {
+    let Some(mut template) = instances.into_iter().next() else {
+        return Ok(None);
+    };
+    template.id = rc
+        .template
+        .as_ref()
+        .and_then(|t| t.id.clone())
+        .unwrap_or_else(|| rc.id.clone());
+    template.campaign = None;
+    template.driven_window_m = None;
+    if SOL_ACTIVITIES.contains(&template.id.as_str()) {
         return Err(c.err(
             &format!("{f}.template.id"),
             format!(
                 "an id not used by the sol's own activities ({})",
-                RESERVED.join(", ")
+                SOL_ACTIVITIES.join(", ")
             ),
-            format!("{id:?}"),
+            format!("{:?}", template.id),
         ));
     }
-    Ok(())
+    Ok(Some(template))
 }
