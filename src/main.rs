@@ -250,6 +250,31 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
                 "grid: {} × {} cells of {} m",
                 c.grid.width, c.grid.height, c.grid.geo.resolution_m_per_px
             )?;
+            if !c.science.is_empty() {
+                let sci = &c.science;
+                let later = sci.targets.iter().filter(|t| t.revealed.is_some()).count();
+                let campaigns: Vec<String> = sci
+                    .goal_set
+                    .iter()
+                    .map(|g| format!("{} (goal set)", g.id))
+                    .chain(
+                        sci.periodic
+                            .iter()
+                            .map(|p| format!("{} (periodic)", p.campaign.id)),
+                    )
+                    .chain(
+                        sci.state_based
+                            .iter()
+                            .map(|s| format!("{} (state-based)", s.campaign.id)),
+                    )
+                    .collect();
+                writeln!(
+                    stdout,
+                    "science: {} targets ({later} revealed during the run); campaigns {}",
+                    sci.targets.len(),
+                    campaigns.join(", ")
+                )?;
+            }
             writeln!(
                 stdout,
                 "passage clearance per route leg (the uncertainty radius at which the leg closes):"

@@ -10,6 +10,7 @@
 //! | `post_drive_imaging` | after the drive | the NavCam panorama (for the ground, and for onboard localization) |
 //! | `comm_pass` | fixed at the sol's `downlink_lmst`, if after the drive | sends the panorama down |
 //! | `sunfind` … `compare_apply` | after the imaging, onboard strategies only | the onboard localization chain of paper 000 Fig. 18-19: SunFind, transfer to the co-processor, run, reboot, run, compare and apply |
+//! | targets, `{periodic}-k`, `{state_based}-k` | where the planner fits them (scenarios with `[science]`) | goal-set observations in reach, periodic instances, state-based instances between drive segments |
 //!
 //! With a scenario's science campaigns ([`crate::science`]) the sol also offers targets in
 //! reach, periodic instances and state-based instances; the drive is split at the

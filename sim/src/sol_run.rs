@@ -218,6 +218,17 @@ fn merge(total: &mut DriveResult, mut seg: DriveResult) {
     total.path_m.extend(seg.path_m.into_iter().skip(skip));
 }
 
+/// The co-processor log step that ends each activity of [`LOCALIZATION_CHAIN`] (SunFind and
+/// the compare-and-apply run on the rover computer, outside the log).
+const LOG_STEP_ENDING: [Option<&str>; LOCALIZATION_CHAIN.len()] = [
+    None,
+    Some("TRANSFER_TO_HBS"),
+    Some("RUN_1"),
+    Some("REBOOT"),
+    Some("RUN_2"),
+    None,
+];
+
 /// Run the localization and map its log onto the chain: each chain step's actual end
 /// (absolute s; `None` if it never ran) for the steps after SunFind.
 fn localize(
@@ -250,18 +261,17 @@ fn localize(
             .find(|e| e.step == name)
             .map(|e| start_s + e.t_s.round() as i64)
     };
-    ends[1] = at("TRANSFER_TO_HBS");
-    ends[2] = at("RUN_1");
-    ends[3] = at("REBOOT");
-    ends[4] = at("RUN_2");
-    let ran_both = ends[4].is_some()
+    for (end, step) in ends.iter_mut().zip(LOG_STEP_ENDING) {
+        *end = step.and_then(at);
+    }
+    let ran_both = ends[LOCALIZATION_CHAIN.len() - 2].is_some()
         && event
             .steps
             .iter()
             .any(|e| e.step == "COMPARE" || e.step == "MOB_APPLY_ONBD_LOCALIZATION");
     if ran_both {
         let last = event.steps.last().map_or(0.0, |e| e.t_s);
-        ends[5] = Some(start_s + last.round() as i64 + compare_apply_s);
+        ends[LOCALIZATION_CHAIN.len() - 1] = Some(start_s + last.round() as i64 + compare_apply_s);
     }
     (event, ends)
 }
