@@ -557,3 +557,31 @@ fn bad_science_sections_name_the_field() {
         assert_bad_input(&o, &all);
     }
 }
+
+/// The README's science table is what `compare` prints for the bundled self-reliant campaign.
+#[test]
+fn readme_science_table_is_what_compare_prints() {
+    let readme = std::fs::read_to_string(root().join("README.md")).expect("README");
+    let cmd = "$ solsim compare scenarios/self-reliant-campaign.toml --no-files\n";
+    let start = readme.find(cmd).expect("the README shows the command") + cmd.len();
+    let block = &readme[start..start + readme[start..].find("```").expect("block end")];
+    assert!(
+        block.contains("plan_replans") && block.contains("onboard"),
+        "{block}"
+    );
+    let o = solsim()
+        .current_dir(root())
+        .args([
+            "compare",
+            "scenarios/self-reliant-campaign.toml",
+            "--no-files",
+        ])
+        .output()
+        .expect("runs");
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        out.contains(block),
+        "README:\n{block}\ncompare printed:\n{out}"
+    );
+}
