@@ -202,7 +202,7 @@ impl Instance {
         for a in &problem.activities {
             let k = match &a.kind {
                 ActivityKind::Task { .. } => 1,
-                ActivityKind::Drive(d) => drive_boundaries_m(d).len() as u32 - 1,
+                ActivityKind::Drive(d) => d.boundaries_m().len() as u32 - 1,
             };
             activity_tasks.push((next..next + k).map(TaskId).collect::<Vec<_>>());
             next += k;
@@ -240,7 +240,7 @@ impl Instance {
             match &a.kind {
                 ActivityKind::Task { .. } => tasks.push(base),
                 ActivityKind::Drive(d) => {
-                    let b = drive_boundaries_m(d);
+                    let b = d.boundaries_m();
                     let k = b.len() - 1;
                     let total_s = d.duration_s() as f64;
                     let total_u = base.utility_micro as f64;
@@ -337,19 +337,6 @@ impl Instance {
         let a = self.problem.activities.iter().position(|a| a.id == id)?;
         self.activity_tasks[a].last().copied()
     }
-}
-
-/// Segment boundaries of a drive in m, from 0 to `length_m`.
-pub(crate) fn drive_boundaries_m(d: &crate::problem::Drive) -> Vec<f64> {
-    if !d.split_at_m.is_empty() {
-        let mut b = Vec::with_capacity(d.split_at_m.len() + 2);
-        b.push(0.0);
-        b.extend_from_slice(&d.split_at_m);
-        b.push(d.length_m);
-        return b;
-    }
-    let k = (d.duration_s() / d.min_segment_s.max(1)).clamp(1, i64::from(d.max_segments.max(1)));
-    (0..=k).map(|j| d.length_m * j as f64 / k as f64).collect()
 }
 
 #[cfg(test)]

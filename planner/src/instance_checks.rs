@@ -2,7 +2,7 @@
 //! reference of a [`Problem`], each failure a [`PlanError`] naming what to fix.
 
 use crate::error::PlanError;
-use crate::instance::{CampaignCurve, drive_boundaries_m};
+use crate::instance::CampaignCurve;
 use crate::problem::{ActivityKind, Problem};
 use crate::value::{MAX_TASKS, MAX_TIERS, MAX_UTILITY, micro};
 
@@ -124,7 +124,7 @@ pub(crate) fn check_activity(p: &Problem, a: &crate::problem::Activity) -> Resul
                     "at most 63 splits",
                 );
             }
-            let b = drive_boundaries_m(d);
+            let b = d.boundaries_m();
             ((total as f64 * b[1] / d.length_m).round() as i64).max(1)
         }
     };

@@ -243,6 +243,25 @@ impl Activity {
 }
 
 impl Drive {
+    /// Segment boundaries in metres from the drive start, `0` first and `length_m` last: the
+    /// explicit `split_at_m`, or `k = clamp(floor(duration / min_segment_s), 1, max_segments)`
+    /// equal segments. The planner splits the drive here.
+    #[must_use]
+    pub fn boundaries_m(&self) -> Vec<f64> {
+        if !self.split_at_m.is_empty() {
+            let mut b = Vec::with_capacity(self.split_at_m.len() + 2);
+            b.push(0.0);
+            b.extend_from_slice(&self.split_at_m);
+            b.push(self.length_m);
+            return b;
+        }
+        let k = (self.duration_s() / self.min_segment_s.max(1))
+            .clamp(1, i64::from(self.max_segments.max(1)));
+        (0..=k)
+            .map(|j| self.length_m * j as f64 / k as f64)
+            .collect()
+    }
+
     /// Whole-drive duration, `ceil(3600 × length_m / rate_m_per_h)` s (0 if not finite).
     ///
     /// # Units

@@ -88,14 +88,7 @@ pub(super) fn drive(
 
 /// The first segment's duration as the planner splits the drive, plus 1 s for its rounding.
 fn first_segment_s(d: &Drive) -> i64 {
-    let total_s = d.duration_s();
-    let first_m = match d.split_at_m.first() {
-        Some(&m) => m,
-        None => {
-            let k = (total_s / d.min_segment_s).clamp(1, i64::from(d.max_segments));
-            d.length_m / k as f64
-        }
-    };
+    let first_m = d.boundaries_m().get(1).copied().unwrap_or(d.length_m);
     (3600.0 * first_m / d.rate_m_per_h).ceil() as i64 + 1
 }
 
