@@ -238,21 +238,31 @@ impl<'a> Search<'a> {
     /// Children of `node` that survive the bound; complete ones are offered as incumbents.
     fn expand(&mut self, node: &Node) -> Vec<Node> {
         let mut children = Vec::new();
+        // One cursor reused for every child (most are pruned), and a child's steps are only
+        // built when it is kept or becomes the incumbent.
+        let mut cur = node.cur.clone();
+        let with = |step: PlanStep| {
+            let mut steps = Vec::with_capacity(node.steps.len() + 1);
+            steps.extend_from_slice(&node.steps);
+            steps.push(step);
+            steps
+        };
         for i in 0..self.inst.tasks().len() {
             let t = TaskId(i as u32);
             let Some(start) = node.cur.earliest_start(self.inst, t) else {
                 continue;
             };
-            let mut cur = node.cur.clone();
+            cur.clone_from(&node.cur);
             cur.append(self.inst, t, start, None);
-            let mut steps = node.steps.clone();
-            steps.push(PlanStep {
+            let step = PlanStep {
                 task: t,
                 start_s: start,
                 end_s: cur.time_s,
-            });
+            };
             self.stats.nodes_generated += 1;
-            self.offer(&cur, &steps);
+            if cur.mandatory_left == 0 && self.incumbent().is_none_or(|v| cur.value > v) {
+                self.best = Some((cur.value, with(step)));
+            }
             if self.dominated(&cur) {
                 self.stats.nodes_dominated += 1;
                 continue;
@@ -264,8 +274,8 @@ impl<'a> Search<'a> {
                 Some(bound) => {
                     self.serial += 1;
                     children.push(Node {
-                        cur,
-                        steps,
+                        cur: cur.clone(),
+                        steps: with(step),
                         bound,
                         serial: self.serial,
                     });

@@ -77,8 +77,18 @@ pub enum Blocker {
 }
 
 /// A fixed-size set of task ids.
-#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+#[derive(Debug, PartialEq, Eq, Hash)]
 pub(crate) struct TaskSet(Vec<u64>);
+
+impl Clone for TaskSet {
+    fn clone(&self) -> Self {
+        Self(self.0.clone())
+    }
+    // Reuses the words (the search overwrites one scratch cursor per child).
+    fn clone_from(&mut self, source: &Self) {
+        self.0.clone_from(&source.0);
+    }
+}
 
 impl TaskSet {
     pub(crate) fn new(n: usize) -> Self {
@@ -93,7 +103,7 @@ impl TaskSet {
 }
 
 /// The search's view of a [`State`]: the same quantities plus derived bookkeeping.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, PartialEq)]
 pub(crate) struct Cursor {
     pub time_s: i64,
     pub energy_wh: f64,
@@ -105,6 +115,32 @@ pub(crate) struct Cursor {
     /// Mandatory tasks not yet done.
     pub mandatory_left: u32,
     pub value: Value,
+}
+
+impl Clone for Cursor {
+    fn clone(&self) -> Self {
+        Self {
+            time_s: self.time_s,
+            energy_wh: self.energy_wh,
+            data_mb: self.data_mb,
+            driven_m: self.driven_m,
+            done: self.done.clone(),
+            counts: self.counts.clone(),
+            mandatory_left: self.mandatory_left,
+            value: self.value,
+        }
+    }
+    // Field by field, reusing the vectors' buffers.
+    fn clone_from(&mut self, source: &Self) {
+        self.time_s = source.time_s;
+        self.energy_wh = source.energy_wh;
+        self.data_mb = source.data_mb;
+        self.driven_m = source.driven_m;
+        self.done.clone_from(&source.done);
+        self.counts.clone_from(&source.counts);
+        self.mandatory_left = source.mandatory_left;
+        self.value = source.value;
+    }
 }
 
 impl Cursor {
