@@ -80,20 +80,19 @@
 //! | mean nodes to prove optimality, 8 / 16 optional | 49 / 3 663 | 44 / 3 302 |
 //! | 86-task instance (80 optional, seed 80): tier-1 gap | 12.8 after 20 000 nodes (3.7 s) | 6.2 after 200 nodes (5.0 s, `Both`) |
 //!
-//! The LP is never looser (it holds each knapsack's constraint plus window rows the
-//! knapsacks lack) and costs 20–200× more per evaluation. On small instances its extra
-//! pruning saves only ~10 % of the nodes; on large ones its deadline rows halve the proven
-//! gap at equal wall time. [`BoundKind::Both`] (the default) tries the knapsack first and
-//! solves LPs only for nodes it cannot prune, tier by tier until the lexicographic
-//! comparison is decided — so lower tiers of the reported `best_bound` can stay loose when a
-//! higher tier decides. For the most nodes per second choose [`BoundKind::Knapsack`].
-//!
-//! The table above predates the B6 work (2026-11-25), which gave the knapsack bound nested
-//! deadline and release rows, rounding to the utility grain (whole points), a Lagrangian
-//! coupling of tied tiers and precomputed density orders. On the B6 instances
-//! ([`b6_problem`], 20/40/80 optional activities) `Knapsack` now proves optimality in
-//! milliseconds to about 1.3 s, while `Both` expands 1–45 % fewer nodes but spends 10–30× the
-//! time in LPs; BENCHMARKS.md, "Activity planner (B6)", compares it with OR-Tools CP-SAT.
+//! The table above predates the B6 work (2026-11-25). Since then the knapsack bound has
+//! nested deadline and release rows, rounding to the utility grain (whole points), a
+//! Lagrangian coupling of tied tiers, precomputed density orders, precedences priced in (part
+//! of a task's utility moves to its undone precondition: `u·x ≤ u·x + μ(x_q − x_i)` on every
+//! completion) and exact 0/1 time knapsacks solved by a dynamic program over the nested rows
+//! when the fractional ones leave a node undecided. The LP still holds rows the knapsacks lack
+//! (all resources at once, window and campaign rows), so it is not uniformly looser or
+//! tighter; on the B6 instances ([`b6_problem`], 20/40/80 optional activities) `Knapsack`
+//! proves optimality in 0.5–142 ms; on the 40- and 80-activity ones it is 38–71× faster than
+//! [`BoundKind::Both`] (the knapsack first, LPs only for nodes it cannot prune), which expands
+//! from 21 % fewer to twice as many nodes (`examples/b6_solve.rs`, bound 0 against 2).
+//! `Knapsack` is therefore the default; BENCHMARKS.md, "Activity planner (B6)", compares it
+//! with OR-Tools CP-SAT.
 //!
 //! ## References
 //! Paper 003 §2 (architecture: goal planner, executive), §3 (campaign intent, Fig. 2),

@@ -68,7 +68,8 @@ pub struct SearchSettings {
     pub node_budget: Option<u64>,
     /// Wall-clock budget; when it binds the result depends on the machine. (default: `None`)
     pub time_budget: Option<Duration>,
-    /// The optimistic bound. (default: [`BoundKind::Both`])
+    /// The optimistic bound. (default: [`BoundKind::Knapsack`]; on the B6 instances it proves
+    /// optimality 38–71× faster than `Both` at n = 40 and 80, see the crate docs)
     pub bound: BoundKind,
     /// Sort the frontier by bound every this many expansions (≥ 1; depth-first in between).
     /// (default: 64)
@@ -83,7 +84,7 @@ impl Default for SearchSettings {
         Self {
             node_budget: Some(100_000),
             time_budget: None,
-            bound: BoundKind::Both,
+            bound: BoundKind::Knapsack,
             resort_every: 64,
             dominance: true,
         }

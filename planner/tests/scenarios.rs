@@ -393,7 +393,7 @@ fn settings_defaults_match_their_docs() {
     let s = SearchSettings::default();
     assert_eq!(s.node_budget, Some(100_000));
     assert_eq!(s.time_budget, None);
-    assert_eq!(s.bound, BoundKind::Both);
+    assert_eq!(s.bound, BoundKind::Knapsack);
     assert_eq!(s.resort_every, 64);
     assert!(s.dominance);
     let g = GeneratorSettings::default();
