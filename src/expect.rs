@@ -374,9 +374,11 @@ impl Expectation {
                         "no_path_faults" => Some(f64::from(run.totals.no_path_faults)),
                         "faults" => Some(f64::from(run.totals.faults)),
                         "sols_to_goal" => run.totals.sols_to_goal.map(f64::from),
+                        // The sol's plan with `sol`, every sol's otherwise.
                         "plan_violations" => Some(
                             run.sols
                                 .iter()
+                                .filter(|r| self.sol.is_none_or(|s| r.sol == s))
                                 .filter_map(|r| r.activity_plan.as_ref())
                                 .map(|p| p.violations.len() as f64)
                                 .sum(),

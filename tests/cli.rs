@@ -507,7 +507,17 @@ fn seu_campaign_counts_and_never_applies_a_corrupted_result() {
 
 #[test]
 fn bad_science_sections_name_the_field() {
-    let cases: [(&str, &str, &[&str]); 7] = [
+    let cases: [(&str, &str, &[&str]); 9] = [
+        (
+            "utility = 4.0\n[science.campaigns.template]",
+            "utility = 4.0\nmax_count = 3\n[science.campaigns.template]",
+            &["science.campaigns[2].max_count", "counts every instance"],
+        ),
+        (
+            "name = \"Navcam mid-drive survey\"",
+            "name = \"Navcam mid-drive survey\"\npreconditions = [\"mastcam-start\"]",
+            &["science.campaigns[2].template.preconditions", "none"],
+        ),
         (
             "position_m = [606.0, 574.0]",
             "position_m = [5000.0, 574.0]",

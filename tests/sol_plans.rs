@@ -199,7 +199,10 @@ fn the_self_reliant_campaign_executes_science_and_replans() {
         .find(|e| e.step == "TRANSFER_TO_HBS")
         .expect("xfer")
         .t_s;
-    assert_eq!(run_1.end_s - transfer.start_s, log_run_1.round() as i64);
+    assert_eq!(
+        run_1.end_s - run_1.start_s,
+        (log_run_1 - log_transfer).round() as i64
+    );
     assert_eq!(
         transfer.end_s - transfer.start_s,
         log_transfer.round() as i64

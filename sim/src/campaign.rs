@@ -225,9 +225,11 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
 
         if record.drove {
             let mut end = cal.drive_end.0;
-            if let (Planning::Ground, Some(pass)) = (planning, entry.downlink_lmst)
-                && plan_last_drive == Some(idx)
-            {
+            // The ground's next plan needs this sol's panorama from the afternoon pass.
+            let panorama_on_pass = planning == Planning::Ground
+                && entry.downlink_lmst.is_some()
+                && plan_last_drive == Some(idx);
+            if let (true, Some(pass)) = (panorama_on_pass, entry.downlink_lmst) {
                 end = end.min(pass.0.saturating_sub(c.post_drive_imaging_s));
             }
             let window = DriveLimits {
@@ -268,6 +270,7 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
                 drive_end: SolSeconds(end.max(cal.drive_start.0)),
                 drive_rate_m_per_h: c.rover.drive_rate_m_per_h,
                 downlink: entry.downlink_lmst,
+                panorama_on_pass,
                 chain: env.onboard.then(|| chain_durations(&c.localizer)),
                 science: SolScience::default(),
             };

@@ -18,7 +18,11 @@
 //! ([`ScienceProgress`]) into the sol's candidate activities and campaigns for
 //! [`crate::sol_plan`]. A goal set's count carries across sols: a campaign that has `n`
 //! members already is offered with `min_count − n`, `max_count − n` and its utility scaled by
-//! `decay^n`, so the sol's plan earns exactly the mission-level curve's increments.
+//! `decay^n`, so once `n ≥ min_count` the sol's plan earns exactly the mission-level curve's
+//! increments (below `min_count` the members already taken are not credited again). A
+//! periodic or state-based campaign counts per sol: it is offered with `min_count = 0` and
+//! `max_count` = the sol's instances; each state-based instance is taken once
+//! ([`ScienceProgress::next_instance`]).
 
 use std::collections::BTreeMap;
 
@@ -84,6 +88,29 @@ pub struct ScienceProgress {
     pub done: BTreeMap<String, u32>,
     /// Members that ran but failed per campaign id (a target out of reach).
     pub failed: BTreeMap<String, u32>,
+    /// Per state-based campaign id: the first instance number not yet done (instance `k` is
+    /// due at `k × every_m` of odometry; each is taken once).
+    pub next_instance: BTreeMap<String, i64>,
+}
+
+impl ScienceProgress {
+    /// Record a campaign member that ran: `observed` is false for a target out of reach.
+    pub fn record(&mut self, science: &Science, activity_id: &str, observed: bool) {
+        let Some(campaign) = science.campaign_of(activity_id) else {
+            return;
+        };
+        if !observed {
+            *self.failed.entry(campaign.to_string()).or_default() += 1;
+            return;
+        }
+        *self.done.entry(campaign.to_string()).or_default() += 1;
+        if science.target(activity_id).is_some() {
+            self.achieved.push(activity_id.to_string());
+        } else if let Some((c, k)) = science.state_based_instance(activity_id) {
+            let next = self.next_instance.entry(c.to_string()).or_default();
+            *next = (*next).max(k + 1);
+        }
+    }
 }
 
 /// One sol's science candidates.
@@ -108,6 +135,8 @@ pub struct SolContext {
     pub drive_start_s: i64,
     /// Metres the drive is planned to cover.
     pub drive_m: f64,
+    /// When the activities before the drive (heating) begin, s after midnight.
+    pub before_drive_s: i64,
 }
 
 /// How a target relates to the rover now: observable already, after the drive, or not.
@@ -173,8 +202,10 @@ impl Target {
         }
     }
 
-    /// The sol's candidate activity for this target, startable in `window_s`
-    /// (`None` if it is out of reach).
+    /// The sol's candidate activity for this target, startable in `window_s` (`None` if it
+    /// is out of reach). In reach after the drive: the drive is its precondition. In reach
+    /// now but not after the drive: it must end by `before_drive_s`, when the activities
+    /// before the drive begin (`None`: no time before the drive is left, so no candidate).
     #[must_use]
     pub fn candidate(
         &self,
@@ -182,13 +213,22 @@ impl Target {
         window_s: [i64; 2],
         route_ahead: &[[f64; 2]],
         drive_left_m: f64,
+        before_drive_s: Option<i64>,
     ) -> Option<Activity> {
         let mut a = self.activity.clone();
         a.campaign = Some(goal_set.to_string());
         a.earliest_start_s = window_s[0];
         a.latest_start_s = window_s[1] - a.duration_s();
         match self.reach(route_ahead, drive_left_m) {
-            Reach::Here => {}
+            Reach::Here => {
+                let end = point_along(route_ahead, drive_left_m);
+                let stays = drive_left_m <= 0.0
+                    || (self.position_m[0] - end[0]).hypot(self.position_m[1] - end[1])
+                        <= self.within_m;
+                if !stays {
+                    a.latest_start_s = a.latest_start_s.min(before_drive_s? - a.duration_s());
+                }
+            }
             Reach::AfterDrive => a.preconditions.push("drive".into()),
             Reach::OutOfReach => return None,
         }
@@ -212,6 +252,19 @@ impl Science {
     #[must_use]
     pub fn is_empty(&self) -> bool {
         self.targets.is_empty() && self.periodic.is_empty() && self.state_based.is_empty()
+    }
+
+    /// The state-based campaign and instance number `k` of an instance id `{template}-{k}`.
+    #[must_use]
+    pub fn state_based_instance(&self, activity_id: &str) -> Option<(&str, i64)> {
+        self.state_based.iter().find_map(|s| {
+            let k = activity_id
+                .strip_prefix(s.template.id.as_str())?
+                .strip_prefix('-')?
+                .parse()
+                .ok()?;
+            Some((s.campaign.id.as_str(), k))
+        })
     }
 
     /// Every campaign id, goal set first.
@@ -281,8 +334,13 @@ impl Science {
                 {
                     continue;
                 }
-                out.activities
-                    .extend(t.candidate(&gs.id, ctx.window_s, route_ahead, ctx.drive_m));
+                out.activities.extend(t.candidate(
+                    &gs.id,
+                    ctx.window_s,
+                    route_ahead,
+                    ctx.drive_m,
+                    Some(ctx.before_drive_s),
+                ));
             }
             if out.activities.len() > before {
                 out.campaigns.push(offered);
@@ -327,8 +385,18 @@ impl Science {
             else {
                 continue;
             };
-            // Due distances k·every_m of odometry, relative to this sol's drive start.
-            let first_k = (progress.odometer_m / every_m).floor() as i64 + 1;
+            // Due distances k·every_m of odometry, relative to this sol's drive start: from
+            // the first instance not yet done whose window has not been passed.
+            let passed_k = ((progress.odometer_m - tolerance_m) / every_m)
+                .ceil()
+                .max(1.0) as i64;
+            let first_k = passed_k.max(
+                progress
+                    .next_instance
+                    .get(&s.campaign.id)
+                    .copied()
+                    .unwrap_or(1),
+            );
             let mut instances = Vec::new();
             for k in first_k.. {
                 let at_m = k as f64 * every_m - progress.odometer_m;
@@ -429,6 +497,7 @@ mod tests {
             window_s: [36_000, 63_000],
             drive_start_s: 40_000,
             drive_m,
+            before_drive_s: 38_200,
         }
     }
 
@@ -445,6 +514,11 @@ mod tests {
         assert!(
             near.preconditions.is_empty(),
             "in reach now: no drive needed"
+        );
+        assert_eq!(
+            near.latest_start_s + 1200,
+            38_200,
+            "observed before the drive leaves it"
         );
         // The drive ends 195 m along: 5 m short of "far", which is in reach then...
         let out = s.for_sol(&ScienceProgress::default(), &ctx(3, 195.0), &ROUTE);
@@ -513,6 +587,31 @@ mod tests {
         assert_eq!(surveys[0].driven_window_m, Some([0.0, 20.0]));
         assert_eq!(out.split_at_m, vec![10.0, 85.0, 160.0]);
         assert_eq!(s.campaign_of("survey-2"), Some("survey"));
+        // An instance is taken once: survey-5 (due at 375 m) ran early, within its tolerance,
+        // at 368 m; the next sol starts at survey-6, not survey-5 again.
+        let mut progress = ScienceProgress {
+            odometer_m: 368.0,
+            ..ScienceProgress::default()
+        };
+        progress.record(&s, "survey-5", true);
+        let out = s.for_sol(&progress, &ctx(1, 100.0), &ROUTE);
+        let first = out
+            .activities
+            .iter()
+            .find(|a| a.campaign.as_deref() == Some("survey"));
+        assert_eq!(first.map(|a| a.id.as_str()), Some("survey-6"));
+        // Not done and passed by less than its tolerance: still offered, at the drive start.
+        progress.next_instance.clear();
+        progress.odometer_m = 380.0;
+        let out = s.for_sol(&progress, &ctx(1, 100.0), &ROUTE);
+        let first = out
+            .activities
+            .iter()
+            .find(|a| a.campaign.as_deref() == Some("survey"));
+        assert_eq!(
+            first.map(|a| (a.id.as_str(), a.driven_window_m)),
+            Some(("survey-5", Some([0.0, 5.0])))
+        );
         assert_eq!(s.campaign_of("tau-0"), Some("tau"));
         assert_eq!(s.campaign_of("near"), Some("outcrop"));
         assert_eq!(s.campaign_of("survey"), None);

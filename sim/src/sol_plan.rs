@@ -8,7 +8,7 @@
 //! | `heating` | ends when the drive window opens | actuators warmed before driving (auxiliary) |
 //! | `drive` | the drive window the strategy allows | AutoNav toward the next waypoints |
 //! | `post_drive_imaging` | after the drive | the NavCam panorama (for the ground, and for onboard localization) |
-//! | `comm_pass` | fixed at the sol's `downlink_lmst`, if after the drive | sends the panorama down |
+//! | `comm_pass` | fixed at the sol's `downlink_lmst`, if after the drive | relays the sol's data; when the ground needs the panorama for its next plan the imaging must end before it |
 //! | `sunfind` … `compare_apply` | after the imaging, onboard strategies only | the onboard localization chain of paper 000 Fig. 18-19: SunFind, transfer to the co-processor, run, reboot, run, compare and apply |
 //! | targets, `{periodic}-k`, `{state_based}-k` | where the planner fits them (scenarios with `[science]`) | goal-set observations in reach, periodic instances, state-based instances between drive segments |
 //!
@@ -157,6 +157,9 @@ pub struct SolPlanRequest {
     pub drive_rate_m_per_h: f64,
     /// An afternoon pass, if any.
     pub downlink: Option<SolSeconds>,
+    /// Whether the ground needs this sol's panorama from that pass for its next plan (the
+    /// imaging then has to end before the pass).
+    pub panorama_on_pass: bool,
     /// The onboard localization chain, under onboard strategies.
     pub chain: Option<ChainDurations>,
     /// Science candidates (targets in reach, periodic and state-based instances) and where
@@ -301,6 +304,9 @@ pub fn sol_problem(p: &SolPlanParams, req: &SolPlanRequest) -> Problem {
         let mut comm = Activity::task("comm_pass", p.comm_pass_s, [pass, pass], 10.0, 0.0);
         comm.mandatory = true;
         comm.downlink_mb = p.comm_downlink_mb;
+        if req.panorama_on_pass {
+            comm.preconditions = vec!["post_drive_imaging".into()];
+        }
         activities.push(comm);
     }
     if let Some(c) = req.chain {
@@ -526,9 +532,13 @@ impl SolExecution {
                 (state, None)
             }
             Err(e) => {
+                // The step ran all the same: count it done at its end and replan from there.
                 self.violations.push(format!("repair after {name}: {e}"));
-                self.remaining.steps.remove(0);
-                return;
+                let mut state = self.state.clone();
+                state.done.push(first.task);
+                state.time_s = end_s;
+                state.driven_m += self.inst.task(first.task).drive_m;
+                (state, None)
             }
         };
         self.rows.push(TimelineStep {
@@ -620,7 +630,7 @@ impl SolExecution {
             let cancelled = self.cancel(&["drive".to_string()]);
             if !cancelled.is_empty() {
                 self.changes.push(format!(
-                    "{}: no plan fits the rest of the drive: cancelled {}: replanned",
+                    "{}: no plan fits the rest of the drive: cancelled {} and planned again",
                     lmst(self.state.time_s),
                     cancelled.join(", ")
                 ));
@@ -680,6 +690,7 @@ mod tests {
             drive_end: at("14:05"),
             drive_rate_m_per_h: 100.0,
             downlink: Some(at("16:00")),
+            panorama_on_pass: false,
             chain: chain.then_some(ChainDurations {
                 transfer_s: 74,
                 run_s: 32,

@@ -7,10 +7,10 @@
 //!
 //! | step | actual end | disruption (full replan) |
 //! |---|---|---|
-//! | drive segment | start + AutoNav's driving time | a fault, the end of the route or the drive budget ends the drive before its last segment: the rest of the drive is cancelled |
-//! | `hbs_transfer` … `compare_apply` | the co-processor log's event times (statistical localizer: as planned) | the localization is lost: the chain's steps that never ran are cancelled |
+//! | drive segment | start + AutoNav's driving time | a fault (in any segment), or the end of the route or the drive budget before the last segment: the rest of the drive is cancelled |
+//! | `hbs_transfer` … `compare_apply` | start + the step's time in the co-processor log (statistical localizer: as planned) | the localization is lost: the chain's steps that never ran are cancelled |
 //! | a target observation | as planned | — (out of reach: logged as failed) |
-//! | a new target revealed | — | added to the plan before the next step |
+//! | a new target revealed | — | added to the plan at the first step boundary after its reveal |
 
 use rand_chacha::ChaCha8Rng;
 
@@ -229,8 +229,8 @@ const LOG_STEP_ENDING: [Option<&str>; LOCALIZATION_CHAIN.len()] = [
     None,
 ];
 
-/// Run the localization and map its log onto the chain: each chain step's actual end
-/// (absolute s; `None` if it never ran) for the steps after SunFind.
+/// Run the localization and map its log onto the chain: each chain step's actual duration, s
+/// (`None` if it never ran), for the steps after SunFind.
 fn localize(
     env: &SolEnv<'_>,
     st: &mut SolState<'_>,
@@ -248,32 +248,32 @@ fn localize(
             imagery_localization(loc, c, st.rover, start, sol_seed)
         }
     };
-    let mut ends = [None; LOCALIZATION_CHAIN.len()];
+    let mut durations = [None; LOCALIZATION_CHAIN.len()];
     if event.steps.is_empty() {
-        return (event, ends);
+        return (event, durations);
     }
-    // The co-processor log stamps each step when it ends; the compare and apply on the rover
-    // computer follow the transfer back and take the planned time.
-    let at = |name: &str| {
-        event
-            .steps
-            .iter()
-            .find(|e| e.step == name)
-            .map(|e| start_s + e.t_s.round() as i64)
-    };
-    for (end, step) in ends.iter_mut().zip(LOG_STEP_ENDING) {
-        *end = step.and_then(at);
+    // The co-processor log stamps each step when it ends: a step lasts from the previous
+    // stamp to its own. The compare and apply on the rover computer follow the transfer back
+    // and take the planned time.
+    let at = |name: &str| event.steps.iter().find(|e| e.step == name).map(|e| e.t_s);
+    let mut previous = 0.0;
+    for (d, step) in durations.iter_mut().zip(LOG_STEP_ENDING) {
+        if let Some(t) = step.and_then(at) {
+            *d = Some((t - previous).round() as i64);
+            previous = t;
+        }
     }
-    let ran_both = ends[LOCALIZATION_CHAIN.len() - 2].is_some()
+    let ran_both = durations[LOCALIZATION_CHAIN.len() - 2].is_some()
         && event
             .steps
             .iter()
             .any(|e| e.step == "COMPARE" || e.step == "MOB_APPLY_ONBD_LOCALIZATION");
     if ran_both {
-        let last = event.steps.last().map_or(0.0, |e| e.t_s);
-        ends[LOCALIZATION_CHAIN.len() - 1] = Some(start_s + last.round() as i64 + compare_apply_s);
+        let last = event.steps.last().map_or(previous, |e| e.t_s);
+        durations[LOCALIZATION_CHAIN.len() - 1] =
+            Some((last - previous).round() as i64 + compare_apply_s);
     }
-    (event, ends)
+    (event, durations)
 }
 
 /// Execute one drive sol's plan. `request` is the sol's plan request without science; the
@@ -292,6 +292,7 @@ pub(crate) fn execute_sol(
             window_s,
             drive_start_s: i64::from(request.drive_start.0),
             drive_m: planned_drive_m(&request),
+            before_drive_s: i64::from(request.drive_start.0) - c.sol_plan.heating_s,
         },
         &route_ahead(c, st.rover),
     );
@@ -310,10 +311,12 @@ pub(crate) fn execute_sol(
             run.truth_error_m = estimate_error_m(&rover.truth, &rover.estimate);
         }
     };
-    let mut exec = match SolExecution::new(&c.sol_plan, &request) {
-        Ok(exec) => exec,
-        Err(e) => {
-            // No plan: drive the window, then localize right after it.
+    let exec = SolExecution::new(&c.sol_plan, &request);
+    let mut exec = match exec {
+        Ok(exec) if exec.next_step().is_some() => exec,
+        planned => {
+            // No plan (a malformed or infeasible problem; the log says which): drive the
+            // window as commanded, then localize right after it.
             let r = drive_sol(env.ctx, st.rover, env.limits, env.vo, st.rng, st.astar);
             merge(&mut run.drive, r);
             end_drive(&mut drive_ended, &mut run, st.rover);
@@ -321,11 +324,15 @@ pub(crate) fn execute_sol(
                 let now = i64::from(request.drive_start.0) + run.drive.drive_time_s.round() as i64;
                 run.localization = Some(localize(env, st, now, c.sol_plan.compare_apply_s).0);
             }
-            run.plan = SolPlan::not_planned(&e);
+            st.progress.odometer_m += run.drive.distance_m;
+            run.plan = match planned {
+                Ok(exec) => exec.finish(),
+                Err(e) => SolPlan::not_planned(&e),
+            };
             return run;
         }
     };
-    let mut chain_ends = [None; LOCALIZATION_CHAIN.len()];
+    let mut chain_durations = [None; LOCALIZATION_CHAIN.len()];
     let mut now_s = window_s[0];
     let mut considered: Vec<String> = Vec::new();
     let mut guard = 0usize;
@@ -353,12 +360,10 @@ pub(crate) fn execute_sol(
         } else if let Some(ci) = chain_at.filter(|&ci| ci >= 1 && env.onboard) {
             if ci == 1 {
                 end_drive(&mut drive_ended, &mut run, st.rover);
-                let (event, ends) = localize(env, st, step.start_s, c.sol_plan.compare_apply_s);
-                chain_ends = ends;
-                if event.steps.is_empty() {
-                    // The statistical model has no co-processor log: the chain runs as planned.
-                    chain_ends = [None; LOCALIZATION_CHAIN.len()];
-                }
+                // The statistical model has no co-processor log: the chain runs as planned.
+                let (event, durations) =
+                    localize(env, st, step.start_s, c.sol_plan.compare_apply_s);
+                chain_durations = durations;
                 run.localization = Some(event);
             }
             let applied = run.localization.as_ref().is_some_and(|l| l.applied);
@@ -367,13 +372,13 @@ pub(crate) fn execute_sol(
                 .as_ref()
                 .is_some_and(|l| !l.steps.is_empty());
             let end = if modelled {
-                chain_ends[ci].unwrap_or(step.start_s + 1)
+                step.start_s + chain_durations[ci].unwrap_or(0)
             } else {
                 step.end_s
             };
             // The chain's last step that ran: a lost localization replans what follows.
             let last_ran = !modelled && ci + 1 == LOCALIZATION_CHAIN.len()
-                || modelled && chain_ends[ci + 1..].iter().all(Option::is_none);
+                || modelled && chain_durations[ci + 1..].iter().all(Option::is_none);
             let disruption = (last_ran && !applied).then(|| Disruption {
                 reason: format!(
                     "localization lost: {}",
@@ -454,25 +459,23 @@ fn drive_segment(
 /// position; campaign members count towards their campaign. Returns the timeline note.
 fn observe(env: &SolEnv<'_>, st: &mut SolState<'_>, step: &Step) -> Option<String> {
     let science = &env.c.science;
-    let campaign = science.campaign_of(&step.activity)?.to_string();
-    if let Some(t) = science.target(&step.activity) {
-        let truth = st.rover.truth.position_m;
-        let d = (t.position_m[0] - truth.x).hypot(t.position_m[1] - truth.y);
-        if d <= t.within_m {
-            st.progress.achieved.push(t.id().to_string());
-            *st.progress.done.entry(campaign).or_default() += 1;
-            Some(format!("observed: {d:.1} m from the target"))
-        } else {
-            *st.progress.failed.entry(campaign).or_default() += 1;
-            Some(format!(
-                "out of reach: {d:.1} m from the target (needs {:.1} m)",
-                t.within_m
-            ))
-        }
+    science.campaign_of(&step.activity)?;
+    let Some(t) = science.target(&step.activity) else {
+        st.progress.record(science, &step.activity, true);
+        return Some("done".into());
+    };
+    let truth = st.rover.truth.position_m;
+    let d = (t.position_m[0] - truth.x).hypot(t.position_m[1] - truth.y);
+    let observed = d <= t.within_m;
+    st.progress.record(science, &step.activity, observed);
+    Some(if observed {
+        format!("observed: {d:.1} m from the target")
     } else {
-        *st.progress.done.entry(campaign).or_default() += 1;
-        Some("done".into())
-    }
+        format!(
+            "out of reach: {d:.1} m from the target (needs {:.1} m)",
+            t.within_m
+        )
+    })
 }
 
 /// Targets revealed by now: add each one in reach to the plan (one at a time; `true` if the
@@ -505,7 +508,15 @@ fn inject_revealed(
         if t.reach(&ahead, drive_left) == Reach::OutOfReach {
             continue;
         }
-        if let Some(a) = t.candidate(&goal_set.id, [step.start_s, window_end], &ahead, drive_left) {
+        // Mid-sol there is no time before the drive left: a target the rest of the drive would
+        // leave behind is not offered.
+        if let Some(a) = t.candidate(
+            &goal_set.id,
+            [step.start_s, window_end],
+            &ahead,
+            drive_left,
+            None,
+        ) {
             exec.inject(a, Some(goal_set), "autonomous science revealed a target");
             return true;
         }

@@ -125,6 +125,29 @@ pub fn resolve_science(
                 "a value",
             ));
         }
+        if let Some(t) = &rc.template
+            && !t.preconditions.is_empty()
+        {
+            return Err(c.err(
+                &format!("{f}.template.preconditions"),
+                "none: a science instance may run whenever its window allows",
+                format!("{:?}", t.preconditions),
+            ));
+        }
+        if matches!(rc.intent.as_str(), "periodic" | "state_based") {
+            for (name, given) in [
+                ("min_count", rc.min_count.is_some()),
+                ("max_count", rc.max_count.is_some()),
+            ] {
+                if given {
+                    return Err(c.err(
+                        &format!("{f}.{name}"),
+                        "none: a periodic or state-based campaign counts every instance a sol offers",
+                        "a value",
+                    ));
+                }
+            }
+        }
         if rc.intent == "periodic" && rc.first_due_lmst.is_none() {
             return Err(c.err(
                 &format!("{f}.first_due_lmst"),
