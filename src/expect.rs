@@ -114,8 +114,8 @@ pub enum Check {
     Science {
         /// Campaign id.
         campaign: String,
-        /// `done` or `failed`.
-        what: &'static str,
+        /// Count the members that failed rather than those done.
+        failed: bool,
         /// Bounds.
         lo: u32,
         /// Bounds.
@@ -273,7 +273,8 @@ impl RawExpectation {
                     format!("{:?}", sc.campaign),
                 ));
             }
-            for (what, r) in [("done", sc.done), ("failed", sc.failed)] {
+            for (failed, r) in [(false, sc.done), (true, sc.failed)] {
+                let what = if failed { "failed" } else { "done" };
                 if let Some([lo, hi]) = r {
                     if lo > hi {
                         return Err(ScenarioError::field(
@@ -285,7 +286,7 @@ impl RawExpectation {
                     }
                     checks.push(Check::Science {
                         campaign: sc.campaign.clone(),
-                        what,
+                        failed,
                         lo,
                         hi,
                     });
@@ -424,14 +425,16 @@ impl Expectation {
                 }
                 Check::Science {
                     campaign,
-                    what,
+                    failed,
                     lo,
                     hi,
                 } => {
-                    let got = run.totals.science.get(campaign).map(|t| match *what {
-                        "failed" => t.failed,
-                        _ => t.done,
-                    });
+                    let got = run
+                        .totals
+                        .science
+                        .get(campaign)
+                        .map(|t| if *failed { t.failed } else { t.done });
+                    let what = if *failed { "failed" } else { "done" };
                     if !got.is_some_and(|g| g >= *lo && g <= *hi) {
                         out.push(Mismatch {
                             check: label(&format!("science {campaign} {what}")),

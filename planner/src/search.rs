@@ -135,16 +135,17 @@ impl<'a> Search<'a> {
         self.best.as_ref().map(|b| b.0)
     }
 
-    fn offer(&mut self, cur: &Cursor, steps: &[PlanStep]) {
+    /// Make `cur` the incumbent if it is complete and better; its steps are only built then.
+    fn offer(&mut self, cur: &Cursor, steps: impl FnOnce() -> Vec<PlanStep>) {
         if cur.mandatory_left == 0 && self.incumbent().is_none_or(|v| cur.value > v) {
-            self.best = Some((cur.value, steps.to_vec()));
+            self.best = Some((cur.value, steps()));
         }
     }
 
     fn run(mut self, root: Cursor) -> PlanOutcome {
         let clock = Instant::now();
         let mut frontier: Vec<Node> = Vec::new();
-        self.offer(&root, &[]);
+        self.offer(&root, Vec::new);
         self.greedy(&root, &[]);
         if let Some(bound) = self
             .bounder
@@ -260,9 +261,7 @@ impl<'a> Search<'a> {
                 end_s: cur.time_s,
             };
             self.stats.nodes_generated += 1;
-            if cur.mandatory_left == 0 && self.incumbent().is_none_or(|v| cur.value > v) {
-                self.best = Some((cur.value, with(step)));
-            }
+            self.offer(&cur, || with(step));
             if self.dominated(&cur) {
                 self.stats.nodes_dominated += 1;
                 continue;
@@ -312,7 +311,7 @@ impl<'a> Search<'a> {
                     end_s: cur.time_s,
                 });
             }
-            self.offer(&cur, &steps);
+            self.offer(&cur, || steps.clone());
         }
     }
 }

@@ -236,6 +236,16 @@ impl Target {
     }
 }
 
+/// `k` of an instance id `{template_id}-{k}` (the ids [`planner::periodic_instances`] and
+/// [`Science::for_sol`] give instances), `None` for any other id.
+fn instance_number(template_id: &str, activity_id: &str) -> Option<i64> {
+    let k = activity_id.strip_prefix(template_id)?.strip_prefix('-')?;
+    if k.is_empty() || !k.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    k.parse().ok()
+}
+
 /// `c` as offered when `n` members are already done: the remaining counts, the utility of
 /// the next member (`None` if the campaign is saturated).
 fn remaining_campaign(c: &Campaign, n: u32) -> Option<Campaign> {
@@ -258,12 +268,7 @@ impl Science {
     #[must_use]
     pub fn state_based_instance(&self, activity_id: &str) -> Option<(&str, i64)> {
         self.state_based.iter().find_map(|s| {
-            let k = activity_id
-                .strip_prefix(s.template.id.as_str())?
-                .strip_prefix('-')?
-                .parse()
-                .ok()?;
-            Some((s.campaign.id.as_str(), k))
+            instance_number(&s.template.id, activity_id).map(|k| (s.campaign.id.as_str(), k))
         })
     }
 
@@ -288,12 +293,6 @@ impl Science {
         if self.target(activity_id).is_some() {
             return self.goal_set.as_ref().map(|c| c.id.as_str());
         }
-        let instance_of = |prefix: &str| {
-            activity_id
-                .strip_prefix(prefix)
-                .and_then(|rest| rest.strip_prefix('-'))
-                .is_some_and(|k| !k.is_empty() && k.bytes().all(|b| b.is_ascii_digit()))
-        };
         self.periodic
             .iter()
             .map(|p| (&p.template.id, &p.campaign.id))
@@ -302,7 +301,7 @@ impl Science {
                     .iter()
                     .map(|s| (&s.template.id, &s.campaign.id)),
             )
-            .find(|(prefix, _)| instance_of(prefix))
+            .find(|(prefix, _)| instance_number(prefix, activity_id).is_some())
             .map(|(_, id)| id.as_str())
     }
 

@@ -375,7 +375,7 @@ pub struct Disruption {
 /// Every plan the sol uses is checked by [`planner::validate_plan`].
 #[derive(Clone, Debug)]
 pub struct SolExecution {
-    problem: Problem,
+    /// The sol's instance; its problem grows when a new goal is injected.
     inst: Instance,
     settings: SearchSettings,
     status: &'static str,
@@ -423,7 +423,6 @@ impl SolExecution {
         let state = State::initial(&inst);
         let outcome = plan_from(&inst, &state, &settings)?;
         let mut exec = Self {
-            problem,
             inst,
             settings,
             status: status_name(outcome.status),
@@ -454,7 +453,7 @@ impl SolExecution {
         let s = self.remaining.steps.first()?;
         let task = self.inst.task(s.task);
         Some(Step {
-            activity: self.problem.activities[task.activity].id.clone(),
+            activity: self.inst.problem().activities[task.activity].id.clone(),
             segment: task.segment,
             start_s: s.start_s,
             end_s: s.end_s,
@@ -465,7 +464,8 @@ impl SolExecution {
     /// The planning window `[start, end]`, s after midnight.
     #[must_use]
     pub fn window_s(&self) -> [i64; 2] {
-        [self.problem.start_s, self.problem.end_s]
+        let p = self.inst.problem();
+        [p.start_s, p.end_s]
     }
 
     /// Metres of driving still in the plan.
@@ -481,7 +481,7 @@ impl SolExecution {
     /// Whether an activity id is in the current problem.
     #[must_use]
     pub fn has_activity(&self, id: &str) -> bool {
-        self.problem.activities.iter().any(|a| a.id == id)
+        self.inst.problem().activities.iter().any(|a| a.id == id)
     }
 
     /// The next step ran and ended at `actual_end_s`; `outcome` goes into its timeline row.
@@ -498,7 +498,7 @@ impl SolExecution {
         };
         let end_s = actual_end_s
             .max(first.start_s + 1)
-            .min(self.problem.end_s.max(first.start_s + 1));
+            .min(self.inst.problem().end_s.max(first.start_s + 1));
         let name = self.inst.task(first.task).name.clone();
         let (state, repaired) = match repair(&self.inst, &self.state, &self.remaining, 0, end_s) {
             Ok(RepairOutcome::Repaired {
@@ -581,7 +581,7 @@ impl SolExecution {
     /// A new goal is known now (autonomous science flagged a target): add it, and its
     /// campaign if the sol's problem lacks it, and replan from the current state.
     pub fn inject(&mut self, activity: Activity, campaign: Option<Campaign>, reason: &str) {
-        let mut problem = self.problem.clone();
+        let mut problem = self.inst.problem().clone();
         if let Some(c) = campaign
             && !problem.campaigns.iter().any(|o| o.id == c.id)
         {
@@ -592,7 +592,6 @@ impl SolExecution {
         // Appending keeps every existing task id, so the current state stays valid.
         match Instance::new(&problem) {
             Ok(inst) => {
-                self.problem = problem;
                 self.inst = inst;
                 self.changes.push(format!(
                     "{}: {reason}: {id} added: replanned",
@@ -609,7 +608,7 @@ impl SolExecution {
         let mut cancelled = Vec::new();
         for (i, t) in self.inst.tasks().iter().enumerate() {
             let id = TaskId(i as u32);
-            if cancel.contains(&self.problem.activities[t.activity].id)
+            if cancel.contains(&self.inst.problem().activities[t.activity].id)
                 && !self.state.done.contains(&id)
             {
                 self.state.done.push(id);

@@ -172,6 +172,20 @@ pub(crate) struct SolRun {
     pub localization: Option<LocalizationEvent>,
     /// The sol's plan as executed.
     pub plan: SolPlan,
+    /// Whether the end-of-drive figures above are taken.
+    drive_ended: bool,
+}
+
+impl SolRun {
+    /// Take the end-of-drive figures from `rover`, once: when the drive is over (a
+    /// disruption, the localization about to run, or the end of the sol's plan).
+    fn end_drive(&mut self, rover: &RoverState, model: &crate::uncertainty::UncertaintyModel) {
+        if !self.drive_ended {
+            self.drive_ended = true;
+            self.end_uncertainty_m = rover.uncertainty.radius_m(model);
+            self.truth_error_m = estimate_error_m(&rover.truth, &rover.estimate);
+        }
+    }
 }
 
 /// The sol's environment: what [`execute_sol`] drives, localizes and observes with.
@@ -302,64 +316,62 @@ pub(crate) fn execute_sol(
         truth_error_m: 0.0,
         localization: None,
         plan: SolPlan::default(),
+        drive_ended: false,
     };
-    let mut drive_ended = false;
-    let end_drive = |ended: &mut bool, run: &mut SolRun, rover: &RoverState| {
-        if !*ended {
-            *ended = true;
-            run.end_uncertainty_m = rover.uncertainty.radius_m(&c.model);
-            run.truth_error_m = estimate_error_m(&rover.truth, &rover.estimate);
+    let mut now_s = window_s[0];
+    match SolExecution::new(&c.sol_plan, &request) {
+        Ok(exec) if exec.next_step().is_some() => {
+            now_s = execute_plan(env, st, &mut run, exec, now_s);
         }
-    };
-    let exec = SolExecution::new(&c.sol_plan, &request);
-    let mut exec = match exec {
-        Ok(exec) if exec.next_step().is_some() => exec,
         planned => {
             // No plan (a malformed or infeasible problem; the log says which): drive the
-            // window as commanded, then localize right after it.
+            // window as commanded; the localization follows right after it.
             let r = drive_sol(env.ctx, st.rover, env.limits, env.vo, st.rng, st.astar);
             merge(&mut run.drive, r);
-            end_drive(&mut drive_ended, &mut run, st.rover);
-            if env.onboard {
-                let now = i64::from(request.drive_start.0) + run.drive.drive_time_s.round() as i64;
-                run.localization = Some(localize(env, st, now, c.sol_plan.compare_apply_s).0);
-            }
-            st.progress.odometer_m += run.drive.distance_m;
+            now_s = i64::from(request.drive_start.0) + run.drive.drive_time_s.round() as i64;
             run.plan = match planned {
                 Ok(exec) => exec.finish(),
                 Err(e) => SolPlan::not_planned(&e),
             };
-            return run;
         }
-    };
+    }
+    run.end_drive(st.rover, &c.model);
+    if env.onboard && run.localization.is_none() {
+        // No plan, or the plan lost the chain (a replan could not fit it): localize when the
+        // sol's activities end, as the ground would command it.
+        run.localization = Some(localize(env, st, now_s, c.sol_plan.compare_apply_s).0);
+    }
+    st.progress.odometer_m += run.drive.distance_m;
+    run
+}
+
+/// Run `exec` step by step into `run`; returns when the sol's last activity ended.
+fn execute_plan(
+    env: &SolEnv<'_>,
+    st: &mut SolState<'_>,
+    run: &mut SolRun,
+    mut exec: SolExecution,
+    mut now_s: i64,
+) -> i64 {
+    let c = env.c;
     let mut chain_durations = [None; LOCALIZATION_CHAIN.len()];
-    let mut now_s = window_s[0];
     let mut considered: Vec<String> = Vec::new();
-    let mut guard = 0usize;
     while let Some(step) = exec.next_step() {
-        guard += 1;
-        if guard > 10_000 {
-            break;
-        }
         if inject_revealed(env, st, &mut exec, &step, &mut considered) {
             continue;
         }
         now_s = step.end_s;
         let chain_at = LOCALIZATION_CHAIN.iter().position(|&a| a == step.activity);
         if step.activity == "drive" {
-            if drive_ended {
-                exec.complete(step.start_s + 1, None, None);
-                continue;
+            let (end_s, disruption, outcome) = drive_segment(env, st, run, &step);
+            now_s = end_s;
+            if disruption.is_some() {
+                run.end_drive(st.rover, &c.model);
             }
-            let seg = drive_segment(env, st, &mut run, &step);
-            now_s = seg.0;
-            if seg.1.is_some() {
-                end_drive(&mut drive_ended, &mut run, st.rover);
-            }
-            exec.complete(seg.0, seg.2, seg.1);
+            exec.complete(end_s, outcome, disruption);
         } else if let Some(ci) = chain_at.filter(|&ci| ci >= 1 && env.onboard) {
             if ci == 1 {
-                end_drive(&mut drive_ended, &mut run, st.rover);
+                run.end_drive(st.rover, &c.model);
                 // The statistical model has no co-processor log: the chain runs as planned.
                 let (event, durations) =
                     localize(env, st, step.start_s, c.sol_plan.compare_apply_s);
@@ -400,15 +412,8 @@ pub(crate) fn execute_sol(
             exec.complete(step.end_s, outcome, None);
         }
     }
-    end_drive(&mut drive_ended, &mut run, st.rover);
-    if env.onboard && run.localization.is_none() {
-        // The plan lost the chain (a replan could not fit it): localize when the sol's
-        // activities end, as the ground would command it.
-        run.localization = Some(localize(env, st, now_s, c.sol_plan.compare_apply_s).0);
-    }
-    st.progress.odometer_m += run.drive.distance_m;
     run.plan = exec.finish();
-    run
+    now_s
 }
 
 /// Drive one segment: its actual end (s), the disruption if the drive stopped before its

@@ -45,16 +45,7 @@ pub fn resolve_science(
                 format!("{:?}", t.id),
             ));
         }
-        if SOL_ACTIVITIES.contains(&t.id.as_str()) {
-            return Err(c.err(
-                &format!("{f}.id"),
-                format!(
-                    "an id not used by the sol's own activities ({})",
-                    SOL_ACTIVITIES.join(", ")
-                ),
-                format!("{:?}", t.id),
-            ));
-        }
+        not_reserved(&c, &format!("{f}.id"), &t.id)?;
         let [x, y] = t.position_m;
         if !(x.is_finite() && y.is_finite() && on_map(t.position_m)) {
             return Err(c.err(
@@ -220,15 +211,21 @@ fn template_of(
         .unwrap_or_else(|| rc.id.clone());
     template.campaign = None;
     template.driven_window_m = None;
-    if SOL_ACTIVITIES.contains(&template.id.as_str()) {
+    not_reserved(c, &format!("{f}.template.id"), &template.id)?;
+    Ok(Some(template))
+}
+
+/// `id` is not one of the sol plan's own activity ids ([`SOL_ACTIVITIES`]).
+fn not_reserved(c: &Check<'_>, field: &str, id: &str) -> Result<(), ScenarioError> {
+    if SOL_ACTIVITIES.contains(&id) {
         return Err(c.err(
-            &format!("{f}.template.id"),
+            field,
             format!(
                 "an id not used by the sol's own activities ({})",
                 SOL_ACTIVITIES.join(", ")
             ),
-            format!("{:?}", template.id),
+            format!("{id:?}"),
         ));
     }
-    Ok(Some(template))
+    Ok(())
 }
