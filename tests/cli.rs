@@ -507,7 +507,12 @@ fn seu_campaign_counts_and_never_applies_a_corrupted_result() {
 
 #[test]
 fn bad_science_sections_name_the_field() {
-    let cases: [(&str, &str, &[&str]); 9] = [
+    let cases: [(&str, &str, &[&str]); 10] = [
+        (
+            "done = [9, 11]",
+            "done = [11, 9]",
+            &["expect[1].science.done", "low ≤ high"],
+        ),
         (
             "utility = 4.0\n[science.campaigns.template]",
             "utility = 4.0\nmax_count = 3\n[science.campaigns.template]",
