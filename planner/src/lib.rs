@@ -101,7 +101,6 @@
 #![warn(missing_docs)]
 
 mod bound;
-mod bound_lp;
 mod campaign;
 mod error;
 mod generate;

@@ -4,7 +4,7 @@
 //! ## References
 //! Paper 003 §3.1 (optimistic plan quality for branch and bound).
 
-use crate::bound::Candidates;
+use super::candidates::Candidates;
 use crate::instance::{Instance, TaskId};
 use crate::state::Cursor;
 use crate::value::MICRO_PER_POINT;
@@ -13,7 +13,7 @@ use clarabel::solver::{DefaultSettingsBuilder, DefaultSolver, IPSolver, Nonnegat
 
 /// The LP rows of a node: sparse columns over the optional candidates, right-hand sides
 /// already reduced by the mandatory candidates fixed at 1.
-pub(crate) struct LpRows {
+pub(super) struct LpRows {
     /// Optional candidate positions in `Candidates::ids`.
     vars: Vec<usize>,
     /// Fixed (mandatory) candidate positions.
@@ -23,7 +23,7 @@ pub(crate) struct LpRows {
     rhs: Vec<f64>,
 }
 
-pub(crate) fn lp_rows(inst: &Instance, cur: &Cursor, cand: &Candidates) -> Option<LpRows> {
+pub(super) fn lp_rows(inst: &Instance, cur: &Cursor, cand: &Candidates) -> Option<LpRows> {
     let p = inst.problem();
     let t0 = cur.time_s;
     let ids = &cand.ids;
@@ -133,7 +133,7 @@ pub(crate) fn lp_rows(inst: &Instance, cur: &Cursor, cand: &Candidates) -> Optio
 }
 
 /// The certified LP bound of tier `k` in micro-points (added to the node's value).
-pub(crate) fn lp_bound_tier(rows: &LpRows, cand: &Candidates, k: usize) -> f64 {
+pub(super) fn lp_bound_tier(rows: &LpRows, cand: &Candidates, k: usize) -> f64 {
     // Work in points: the solver prefers O(1) data.
     let u: Vec<f64> = rows
         .vars
