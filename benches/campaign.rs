@@ -12,8 +12,7 @@ use std::path::Path;
 use std::time::Duration;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use solsim::regress;
-use solsim::scenario::Scenario;
+use study::Scenario;
 
 fn scenario_path() -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/rapid-traverse-379-409.toml")
@@ -31,13 +30,13 @@ fn bench_compare(c: &mut Criterion) {
     let scenario = Scenario::load(&path).expect("bundled scenario loads");
     let strategies = scenario.strategies();
     group.bench_function("strategies", |b| {
-        b.iter(|| regress::run_strategies(&scenario, &strategies))
+        b.iter(|| scenario.compare(&strategies, scenario.seed()))
     });
     group.bench_function("compare_total", |b| {
         b.iter(|| {
             let s = Scenario::load(&path).expect("bundled scenario loads");
-            let runs = regress::run_strategies(&s, &s.strategies());
-            assert_eq!(runs.1.len(), 5);
+            let runs = s.compare(&s.strategies(), s.seed());
+            assert_eq!(runs.len(), 5);
             runs
         });
     });

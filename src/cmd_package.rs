@@ -53,7 +53,6 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::Context as _;
-use serde::Deserialize;
 
 use localization::hbs::HbsFile;
 use localization::synthetic::{OrbitalParams, render_orbital, truth_patch};
@@ -64,9 +63,8 @@ use maps::package::{
 use maps::procedural::noise::{hash2, sub_seed};
 use maps::{GeoTransform, MapLayers, Raster};
 
-use crate::error::ScenarioError;
 use crate::report::write_atomic;
-use crate::scenario::Scenario;
+use study::Scenario;
 
 /// Side of a render block, metres: small enough that blocks follow the corridor closely, large
 /// enough that the margin costs little ((128 + 2 × 24)² / 128² ≈ 1.9× the block area).
@@ -102,54 +100,6 @@ pub struct PackageArgs {
     /// with it).
     #[arg(long, default_value_t = BLOCK_M, value_name = "M", hide = true)]
     pub block_m: usize,
-}
-
-/// The `[map]` table of a scenario (the rest is ignored: [`Scenario::load`] checks it).
-#[derive(Debug, Deserialize)]
-struct MapOnly {
-    map: MapPaths,
-}
-
-#[derive(Debug, Deserialize)]
-struct MapPaths {
-    appearance: PathBuf,
-    dem: PathBuf,
-    terrain: PathBuf,
-    #[serde(default)]
-    dem_datum_m: f64,
-    resolution_m_per_px: Option<f64>,
-    origin_m: Option<[f64; 2]>,
-}
-
-/// Loads the map layers a (valid) scenario file names.
-///
-/// # Errors
-/// A [`ScenarioError`] naming the file, if it cannot be read or its map cannot be loaded.
-pub fn load_scenario_map(path: &Path) -> Result<MapLayers, ScenarioError> {
-    let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    let raw: MapOnly =
-        toml::from_str(&text).map_err(|e| ScenarioError::from_toml(path, &text, &e))?;
-    let base = path.parent().unwrap_or(Path::new("."));
-    let m = raw.map;
-    let georef = match (m.resolution_m_per_px, m.origin_m) {
-        (Some(res), Some(o)) => Some(GeoTransform::new(o[0], o[1], res)),
-        _ => None,
-    };
-    MapLayers::load(
-        &base.join(&m.appearance),
-        &base.join(&m.dem),
-        &base.join(&m.terrain),
-        m.dem_datum_m,
-        georef,
-    )
-    .map_err(|source| ScenarioError::Map {
-        path: path.to_path_buf(),
-        field: "map".into(),
-        source: Box::new(source),
-    })
 }
 
 /// Seeds and orbital settings of one package: everything a block's pixels depend on besides
@@ -424,7 +374,7 @@ pub fn run(args: &PackageArgs, out: &mut dyn std::io::Write) -> anyhow::Result<(
         );
     }
     let scenario = Scenario::load(&args.scenario)?;
-    let layers = load_scenario_map(&args.scenario)?;
+    let layers = &*scenario.layers;
     std::fs::create_dir_all(&args.out).with_context(|| {
         format!(
             "{}: cannot create the package directory",

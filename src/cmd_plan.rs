@@ -18,18 +18,11 @@ use planner::{
 };
 use sim::time::SolSeconds;
 
-mod activity_entry;
-mod campaign_entry;
-pub mod campaign_file;
-mod check;
-mod raw;
-pub mod science_section;
-pub use raw::RawScience;
 mod report_format;
 
 pub use report_format::{report_json, report_table, status_text};
 
-pub use campaign_file::{CampaignFile, PlanFileError};
+pub use study::campaign_file::{self, CampaignFile, PlanFileError};
 
 /// Node budget when `--nodes` is not given: with no time budget the plan is a deterministic
 /// function of the file.

@@ -3,10 +3,11 @@
 //! The binary (`src/main.rs`) is a thin clap front end over these modules, so integration tests
 //! and benchmarks drive exactly what users run.
 //!
-//! - [`scenario`]: scenario files (TOML) → a validated [`scenario::Scenario`].
-//! - [`expect`]: expected outcomes in scenario files; [`regress`] runs them.
+//! The file formats, their validation and the study API live in the [`study`] crate; these
+//! modules are the commands: argument structs, orchestration and printing.
+//!
+//! - [`regress`]: runs every scenario's `[[expect]]` entries; text and JUnit reports.
 //! - [`report`]: JSON, per-sol CSV, GeoJSON outputs and terminal tables.
-//! - [`error`]: [`error::ScenarioError`], one line naming file, field and what was expected.
 #![warn(missing_docs)]
 
 pub mod cmd_localize;
@@ -15,8 +16,5 @@ pub mod cmd_map;
 pub mod cmd_package;
 pub mod cmd_plan;
 pub mod cmd_zones;
-pub mod error;
-pub mod expect;
 pub mod regress;
 pub mod report;
-pub mod scenario;

@@ -10,10 +10,10 @@ use std::process::ExitCode;
 use anyhow::Context as _;
 use clap::{Args, Parser, Subcommand};
 
-use sim::{CampaignOutcome, Strategy, campaign};
+use sim::{CampaignOutcome, Strategy};
 use solsim::report;
-use solsim::scenario::Scenario;
 use solsim::{cmd_localize, cmd_localize_rasters, cmd_map, cmd_package, cmd_zones, regress};
+use study::Scenario;
 
 /// Simulate multi-sol Mars rover drives: position uncertainty, grown keep-out zones, AutoNav
 /// NO_PATH faults, and how operations strategies (ground-in-the-loop, onboard global
@@ -159,12 +159,27 @@ fn main() -> ExitCode {
     match dispatch(cli) {
         Ok(code) => code,
         Err(e) => {
-            // One line: the message chain, outermost first.
-            let msg: Vec<String> = e.chain().map(|c| c.to_string()).collect();
-            let _ = writeln!(std::io::stderr(), "error: {}", msg.join(": "));
+            let _ = writeln!(std::io::stderr(), "error: {}", one_line(&e));
             ExitCode::from(2)
         }
     }
+}
+
+/// The message chain on one line, outermost first, each clause once: a cause whose text the
+/// message before it already quotes is left out (`…: No such file or directory (os error 2)`
+/// appears once, not twice).
+fn one_line(e: &anyhow::Error) -> String {
+    let mut line = String::new();
+    for clause in e.chain().map(|c| c.to_string()) {
+        if line.contains(&clause) {
+            continue;
+        }
+        if !line.is_empty() {
+            line.push_str(": ");
+        }
+        line.push_str(&clause);
+    }
+    line
 }
 
 fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
@@ -173,15 +188,12 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Compare(a) => {
             let scenario = Scenario::load(&a.scenario)?;
             let strategies = scenario.strategies();
-            let (legs, runs) = regress::run_strategies(&scenario, &strategies);
-            let outcomes: Vec<CampaignOutcome> = strategies
-                .iter()
-                .filter_map(|s| runs.get(s).cloned())
-                .collect();
+            let outcomes = scenario.compare(&strategies, scenario.seed());
+            let legs = &scenario.legs;
             if a.output.json {
                 let docs: Vec<_> = outcomes
                     .iter()
-                    .map(|o| report::run_json(&scenario, o, &legs))
+                    .map(|o| report::run_json(&scenario, o, legs))
                     .collect();
                 write!(
                     stdout,
@@ -197,7 +209,7 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
                 )?;
                 write!(stdout, "{}", report::compare_table(&outcomes))?;
             }
-            write_files(&a.output, &scenario, &outcomes, &legs, stdout)?;
+            write_files(&a.output, &scenario, &outcomes, legs, stdout)?;
             Ok(ExitCode::SUCCESS)
         }
         Command::Run(a) => run_one(&a.scenario, &a.strategy, &a.output, stdout),
@@ -279,7 +291,7 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
                 stdout,
                 "passage clearance per route leg (the uncertainty radius at which the leg closes):"
             )?;
-            for l in campaign::leg_clearances(c) {
+            for l in &s.legs {
                 let p = c.route[l.to_waypoint];
                 match l.clearance_m {
                     Some(r) => writeln!(
@@ -347,13 +359,13 @@ fn run_one(
             path.display()
         );
     }
-    let legs = campaign::leg_clearances(&scenario.campaign);
-    let outcome = campaign::run_campaign(&scenario.campaign, strategy, &legs);
+    let legs = &scenario.legs;
+    let outcome = scenario.run(strategy, scenario.seed());
     if output.json {
         write!(
             stdout,
             "{}",
-            report::pretty(&report::run_json(&scenario, &outcome, &legs))
+            report::pretty(&report::run_json(&scenario, &outcome, legs))
         )?;
     } else {
         write!(stdout, "{}", report::sol_table(&outcome))?;
@@ -362,7 +374,7 @@ fn run_one(
         output,
         &scenario,
         std::slice::from_ref(&outcome),
-        &legs,
+        legs,
         stdout,
     )?;
     Ok(ExitCode::SUCCESS)

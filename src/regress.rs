@@ -1,16 +1,10 @@
 //! `solsim regress DIR`: run every scenario's expectations; report mismatches as a diff.
 
-use std::collections::HashMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use rayon::prelude::*;
-
-use crate::error::ScenarioError;
-use crate::expect::Mismatch;
-use crate::scenario::Scenario;
-use sim::outcome::LegClearance;
-use sim::{CampaignOutcome, Strategy, campaign};
+use study::expect::Mismatch;
+use study::{Scenario, ScenarioError};
 
 /// The result of one expectation.
 #[derive(Debug, Clone)]
@@ -27,42 +21,24 @@ pub struct CaseResult {
     pub seconds: f64,
 }
 
-/// The route's per-leg passage clearances and the runs of `strategies` (in parallel; results do
-/// not depend on the thread count: each strategy has its own random stream).
-#[must_use]
-pub fn run_strategies(
-    scenario: &Scenario,
-    strategies: &[Strategy],
-) -> (Vec<LegClearance>, HashMap<Strategy, CampaignOutcome>) {
-    let legs = campaign::leg_clearances(&scenario.campaign);
-    let runs = strategies
-        .par_iter()
-        .map(|&s| (s, campaign::run_campaign(&scenario.campaign, s, &legs)))
-        .collect();
-    (legs, runs)
-}
-
-/// Check one scenario.
+/// Check one scenario: load it, run what its expectations need, check each one.
+///
+/// # Errors
+/// The [`ScenarioError`] of a scenario that cannot be loaded.
 pub fn check_scenario(path: &Path) -> Result<Vec<CaseResult>, ScenarioError> {
     let start = std::time::Instant::now();
     let scenario = Scenario::load(path)?;
-    let mut needed: Vec<Strategy> = scenario
-        .expectations
-        .iter()
-        .flat_map(|e| e.strategies())
-        .collect();
-    needed.sort_by_key(|s| s.stream_id());
-    needed.dedup();
-    let (_, runs) = run_strategies(&scenario, &needed);
+    let checked = scenario.check_expectations();
     let seconds = start.elapsed().as_secs_f64();
     Ok(scenario
         .expectations
         .iter()
-        .map(|e| CaseResult {
+        .zip(checked)
+        .map(|(e, mismatches)| CaseResult {
             scenario: path.to_path_buf(),
             case: format!("{}/expect[{}]", scenario.name, e.index),
             what: e.what.clone(),
-            mismatches: e.check(|s| &runs[&s]),
+            mismatches,
             seconds,
         })
         .collect())

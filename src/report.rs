@@ -9,9 +9,9 @@ use std::path::{Path, PathBuf};
 
 use serde_json::{Value, json};
 
-use crate::scenario::Scenario;
 use sim::CampaignOutcome;
 use sim::outcome::LegClearance;
+use study::Scenario;
 
 /// Provenance written into every JSON output.
 #[must_use]

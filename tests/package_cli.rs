@@ -13,7 +13,7 @@ use localization::hbs::HbsFile;
 use maps::package::{BlockRequest, distance_to_route_m};
 use maps::raster_io::read_png;
 use maps::{GeoTransform, Raster};
-use solsim::cmd_package::{RenderSettings, load_scenario_map, render_block};
+use solsim::cmd_package::{RenderSettings, render_block};
 
 /// The route of the test scenario: 67 m on a diagonal, in the middle of the map.
 const ROUTE: [[f64; 2]; 3] = [[1000.0, 1000.0], [1040.0, 1030.0], [1060.0, 1020.0]];
@@ -129,7 +129,8 @@ fn package_decodes_masks_and_round_trips_the_dem() {
     let datum = m["dem"]["datum_m"].as_f64().expect("datum");
     let tiles = m["tiles"].as_array().expect("tiles");
     assert!(tiles.len() >= 4, "{} tiles", tiles.len());
-    let layers = load_scenario_map(&sc).expect("map");
+    let scenario = study::Scenario::load(&sc).expect("scenario");
+    let layers = &*scenario.layers;
     let settings = RenderSettings::for_seed(SEED);
     let (mut app_kept, mut dem_kept) = (0, 0);
     for t in tiles {
@@ -163,7 +164,7 @@ fn package_decodes_masks_and_round_trips_the_dem() {
             origin_m: dem.geo.origin_m,
             size_m: [dem.width, dem.height],
         };
-        let (truth_app, truth_dem) = render_block(&layers, &req, &settings).expect("render");
+        let (truth_app, truth_dem) = render_block(layers, &req, &settings).expect("render");
         for row in 0..dem.height {
             for col in 0..dem.width {
                 let (x, y) = dem.geo.center_of(col, row);
@@ -204,19 +205,20 @@ fn package_decodes_masks_and_round_trips_the_dem() {
 fn blocks_join_without_seams() {
     // One 64 m block against the same ground rendered as four 32 m blocks: bit for bit.
     let dir = tempfile::tempdir().expect("tempdir");
-    let layers = load_scenario_map(&scenario(dir.path())).expect("map");
+    let loaded = study::Scenario::load(&scenario(dir.path())).expect("scenario");
+    let layers = &*loaded.layers;
     let s = RenderSettings::for_seed(SEED);
     let whole = BlockRequest {
         origin_m: [3000.0, 1010.0],
         size_m: [64, 64],
     };
-    let (app, dem) = render_block(&layers, &whole, &s).expect("render");
+    let (app, dem) = render_block(layers, &whole, &s).expect("render");
     for (dx, dy) in [(0usize, 0usize), (32, 0), (0, 32), (32, 32)] {
         let part = BlockRequest {
             origin_m: [3000.0 + dx as f64, 1010.0 - dy as f64],
             size_m: [32, 32],
         };
-        let (a, d) = render_block(&layers, &part, &s).expect("render");
+        let (a, d) = render_block(layers, &part, &s).expect("render");
         for row in 0..a.height {
             for col in 0..a.width {
                 assert_eq!(

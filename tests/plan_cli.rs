@@ -388,7 +388,7 @@ fn planner_errors_name_the_activity() {
 #[test]
 fn documented_defaults_match_the_code() {
     use solsim::cmd_plan::DEFAULT_NODE_BUDGET;
-    use solsim::cmd_plan::campaign_file::{DEFAULT_MAX_SEGMENTS, DEFAULT_MIN_SEGMENT_MIN};
+    use study::campaign_file::{DEFAULT_MAX_SEGMENTS, DEFAULT_MIN_SEGMENT_MIN};
     let readme =
         std::fs::read_to_string(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("README.md"))
             .expect("README");

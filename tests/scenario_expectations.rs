@@ -42,7 +42,7 @@ fn every_bundled_scenario_validates() {
     let files = regress::scenario_files(&dir).expect("scenarios/ is readable");
     assert!(files.len() >= 3);
     for f in files {
-        solsim::scenario::Scenario::load(&f).unwrap_or_else(|e| panic!("{e}"));
+        study::Scenario::load(&f).unwrap_or_else(|e| panic!("{e}"));
     }
 }
 

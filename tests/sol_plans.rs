@@ -7,8 +7,10 @@ use std::path::Path;
 
 use sim::Strategy;
 use sim::sol_plan::LOCALIZATION_CHAIN;
-use solsim::regress;
-use solsim::scenario::Scenario;
+use std::collections::HashMap;
+
+use sim::CampaignOutcome;
+use study::Scenario;
 
 fn scenario(file: &str) -> Scenario {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -17,10 +19,19 @@ fn scenario(file: &str) -> Scenario {
     Scenario::load(&path).unwrap_or_else(|e| panic!("{e}"))
 }
 
+/// The runs of `strategies` under the scenario's seed, by strategy.
+fn compare(s: &Scenario, strategies: &[Strategy]) -> HashMap<Strategy, CampaignOutcome> {
+    strategies
+        .iter()
+        .copied()
+        .zip(s.compare(strategies, s.seed()))
+        .collect()
+}
+
 #[test]
 fn every_drive_sol_of_the_rapid_traverse_has_a_valid_plan_with_the_chain_under_onboard() {
     let s = scenario("rapid-traverse-379-409.toml");
-    let (_, runs) = regress::run_strategies(&s, &s.strategies());
+    let runs = compare(&s, &s.strategies());
     for (strategy, outcome) in &runs {
         let mut drive_sols = 0;
         for sol in outcome.sols.iter().filter(|r| r.drove) {
@@ -92,7 +103,7 @@ fn every_drive_sol_of_the_rapid_traverse_has_a_valid_plan_with_the_chain_under_o
 #[test]
 fn the_self_reliant_campaign_executes_science_and_replans() {
     let s = scenario("self-reliant-campaign.toml");
-    let (_, runs) = regress::run_strategies(&s, &[Strategy::Ground, Strategy::Onboard]);
+    let runs = compare(&s, &[Strategy::Ground, Strategy::Onboard]);
     let lmst = |t: &str| i64::from(sim::time::SolSeconds::parse_lmst(t).expect("lmst").0);
     let (first_due, period, tol) = (lmst("09:30"), 3 * 3600, 20 * 60);
     for (strategy, outcome) in &runs {
@@ -225,9 +236,9 @@ fn a_lost_localization_replans_the_rest_of_the_sol() {
             failure_rate: 1.0,
             ..Default::default()
         });
-    let (_, runs) = regress::run_strategies(&s, &[Strategy::Onboard]);
+    let run = s.run(Strategy::Onboard, s.seed());
     let mut lost = 0;
-    for sol in runs[&Strategy::Onboard].sols.iter().filter(|r| r.drove) {
+    for sol in run.sols.iter().filter(|r| r.drove) {
         let plan = sol.activity_plan.as_ref().expect("plan");
         assert!(
             plan.violations.is_empty(),

@@ -5,6 +5,7 @@
 //! - [`terrain`]: terrain classes ([`TerrainClass`]: sand, soil, bedrock).
 //! - [`raster_io`]: PNG and GeoTIFF readers and writers (appearance u8, DEM as 16-bit cm or f32 m,
 //!   terrain class u8) and [`MapLayers`], the three layers of one map.
+//! - [`input_file`]: reading inputs safely (regular files only, a size cap).
 //! - [`package`]: onboard map packages: the maps masked to a corridor around the route, PNG.
 //! - [`procedural`]: the seeded terrain generator the bundled scenario maps come from.
 //! - [`zone`]: keep-in / keep-out zones ([`ZoneSet`]) read from GeoJSON, with exact distance
@@ -23,6 +24,7 @@
 //! ```
 #![warn(missing_docs)]
 
+pub mod input_file;
 pub mod package;
 pub mod procedural;
 pub mod raster;

@@ -181,10 +181,11 @@ impl ZoneSet {
     /// Read and validate a zones GeoJSON file (see the [module docs](self) for the format).
     ///
     /// # Errors
-    /// [`ZoneError::Io`] when the file cannot be read, otherwise as
+    /// [`ZoneError::Io`] when the file cannot be read (also for a FIFO, a device or a file over
+    /// [`crate::input_file::MAX_TEXT_FILE_BYTES`]), otherwise as
     /// [`ZoneSet::from_geojson_str`].
     pub fn load(path: &Path) -> Result<ZoneSet, ZoneError> {
-        let text = std::fs::read_to_string(path).map_err(|error| ZoneError::Io {
+        let text = crate::input_file::read_text_file(path).map_err(|error| ZoneError::Io {
             path: path.to_owned(),
             error,
         })?;

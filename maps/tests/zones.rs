@@ -464,7 +464,7 @@ fn missing_file_is_rejected() {
     assert!(matches!(err, ZoneError::Io { .. }));
     let msg = err.to_string();
     assert!(
-        msg.starts_with("/nonexistent/dir/zones_missing.geojson: cannot read zones file"),
+        msg.starts_with("/nonexistent/dir/zones_missing.geojson: cannot read the file"),
         "{msg}"
     );
 }

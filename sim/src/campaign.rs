@@ -6,6 +6,8 @@
 //! itself. A fault halts driving until the ground has seen it. Everything random comes from one
 //! ChaCha8 stream per (scenario seed, strategy), so a run is reproducible bit for bit.
 
+use std::sync::Arc;
+
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
@@ -52,8 +54,8 @@ pub struct Campaign {
     /// Extension drives without onboard localization stop after this many sols without a
     /// localization (paper 000 §8: "not more than three sols").
     pub max_extension_sols: u32,
-    /// The planning grid.
-    pub grid: PlanningGrid,
+    /// The planning grid, shared by every run of the scenario (and every thread).
+    pub grid: Arc<PlanningGrid>,
     /// Each drive sol's activity plan settings.
     pub sol_plan: SolPlanParams,
     /// Science campaigns planned onboard each drive sol (none in most scenarios).

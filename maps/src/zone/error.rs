@@ -20,12 +20,13 @@ use std::path::PathBuf;
 #[non_exhaustive]
 pub enum ZoneError {
     /// The file could not be read.
-    #[error("{}: cannot read zones file: {error}", path.display())]
+    #[error("{}: {error}", path.display())]
     Io {
         /// The zones file.
         path: PathBuf,
-        /// What the operating system said (part of the message, so not also a `source`).
-        error: std::io::Error,
+        /// Why it was not read: the operating system's error, not a regular file, too large,
+        /// not UTF-8 (part of the message, so not also a `source`).
+        error: crate::input_file::InputFileError,
     },
 
     /// The file is not JSON (the message gives the line and column).

@@ -6,14 +6,16 @@
 //! and builds the [`sim::Campaign`]. After that the rest of the code trusts a `Scenario`.
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
-use sha2::{Digest, Sha256};
+use rayon::prelude::*;
 
+use crate::check::Check;
 use crate::error::ScenarioError;
 
 mod raw;
 
-use crate::expect::Expectation;
+use crate::expect::{Expectation, Mismatch};
 use localization::matcher::Method;
 use localization::onboard::OnboardSettings;
 use maps::{GeoTransform, MapLayers, ZoneSet};
@@ -21,11 +23,12 @@ use raw::RawPerTerrain;
 pub use raw::RawScenario;
 use sim::autonav::{PerTerrain, RoverParams};
 use sim::calendar::{Calendar, HistoricSol, Planning, SolEntry};
-use sim::campaign::Campaign;
+use sim::campaign::{self, Campaign};
 use sim::localizer::{ImageryLocalizer, OnboardLocalizer, StatisticalLocalizer};
+use sim::outcome::LegClearance;
 use sim::planning_grid::{GridParams, PlanningGrid};
-use sim::time::SolSeconds;
 use sim::uncertainty::UncertaintyModel;
+use sim::{CampaignOutcome, Strategy};
 
 /// Default settings, written once: the scenario-level defaults are the library ones.
 const DEFAULT_OPERATOR_MARGIN_M: f64 = 1.0;
@@ -53,67 +56,12 @@ pub struct Scenario {
     pub notes: Vec<(u32, String)>,
     /// Whether any sol has historic data (so the `replay` strategy is meaningful).
     pub has_history: bool,
-}
-
-/// A checker that collects the first error, so field validation reads as a list.
-struct Check<'a> {
-    path: &'a Path,
-}
-
-impl Check<'_> {
-    fn finite(&self, field: &str, v: f64) -> Result<f64, ScenarioError> {
-        if v.is_finite() {
-            Ok(v)
-        } else {
-            Err(ScenarioError::field(self.path, field, "a finite number", v))
-        }
-    }
-    fn positive(&self, field: &str, v: f64, unit: &str) -> Result<f64, ScenarioError> {
-        if v.is_finite() && v > 0.0 {
-            Ok(v)
-        } else {
-            Err(ScenarioError::field(
-                self.path,
-                field,
-                format!("a positive number of {unit}"),
-                v,
-            ))
-        }
-    }
-    fn non_negative(&self, field: &str, v: f64, unit: &str) -> Result<f64, ScenarioError> {
-        if v.is_finite() && v >= 0.0 {
-            Ok(v)
-        } else {
-            Err(ScenarioError::field(
-                self.path,
-                field,
-                format!("a non-negative number of {unit}"),
-                v,
-            ))
-        }
-    }
-    fn fraction(&self, field: &str, v: f64) -> Result<f64, ScenarioError> {
-        if (0.0..=1.0).contains(&v) {
-            Ok(v)
-        } else {
-            Err(ScenarioError::field(
-                self.path,
-                field,
-                "a fraction between 0 and 1",
-                v,
-            ))
-        }
-    }
-    fn lmst(&self, field: &str, v: &str) -> Result<SolSeconds, ScenarioError> {
-        SolSeconds::parse_lmst(v).ok_or_else(|| {
-            ScenarioError::field(
-                self.path,
-                field,
-                "a local solar time \"HH:MM\" between 00:00 and 24:00",
-                format!("{v:?}"),
-            )
-        })
-    }
+    /// The map layers (appearance, DEM, terrain class), loaded once and shared.
+    pub layers: Arc<MapLayers>,
+    /// The keep-in / keep-out zones, loaded once and shared.
+    pub zones: Arc<ZoneSet>,
+    /// The route's passage clearance per leg (independent of strategy and seed), computed once.
+    pub legs: Vec<LegClearance>,
 }
 
 fn per_terrain(
@@ -140,35 +88,10 @@ fn per_terrain(
     })
 }
 
-/// Read a TOML file into its raw (`deny_unknown_fields`) structs, with the SHA-256 of its
-/// bytes (hex) for provenance. Errors name the file, and the line and field for TOML errors.
-pub(crate) fn read_toml<T: serde::de::DeserializeOwned>(
-    path: &Path,
-) -> Result<(T, String), ScenarioError> {
-    let bytes = std::fs::read(path).map_err(|source| ScenarioError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    let text = String::from_utf8(bytes.clone()).map_err(|e| {
-        ScenarioError::field(
-            path,
-            "(file)",
-            "UTF-8 text",
-            format!("invalid byte at offset {}", e.utf8_error().valid_up_to()),
-        )
-    })?;
-    let raw: T = toml::from_str(&text).map_err(|e| ScenarioError::from_toml(path, &text, &e))?;
-    let sha256 = Sha256::digest(&bytes)
-        .iter()
-        .map(|b| format!("{b:02x}"))
-        .collect();
-    Ok((raw, sha256))
-}
-
 impl Scenario {
     /// Read, validate and resolve a scenario file (maps and zones included).
     pub fn load(path: &Path) -> Result<Self, ScenarioError> {
-        let (raw, sha256) = read_toml::<RawScenario>(path)?;
+        let (raw, sha256) = crate::input::read_toml::<RawScenario>(path)?;
         Self::resolve(path, raw, sha256)
     }
 
@@ -555,20 +478,21 @@ impl Scenario {
                 ));
             }
         }
-        let science = crate::cmd_plan::science_section::resolve_science(
+        let science = crate::science::resolve_science(
             path,
             &raw.science,
             &|p| layers.dem.contains_point(p[0], p[1]),
             &format!("x {x0:.1}..{x1:.1} m, y {y0:.1}..{y1:.1} m"),
         )?;
-        let grid = PlanningGrid::build(&zones, &layers, &grid_params);
+        let grid = Arc::new(PlanningGrid::build(&zones, &layers, &grid_params));
+        let layers = Arc::new(layers);
         let post_drive_imaging_s = ops
             .post_drive_imaging_s
             .unwrap_or(DEFAULT_POST_DRIVE_IMAGING_S);
         let localizer = match method {
             None => OnboardLocalizer::Statistical(statistical),
             Some(method) => {
-                let mut imagery = ImageryLocalizer::new(std::sync::Arc::new(layers), method);
+                let mut imagery = ImageryLocalizer::new(Arc::clone(&layers), method);
                 imagery.settings.hbs_slowdown = hbs_slowdown;
                 OnboardLocalizer::Imagery(Box::new(imagery))
             }
@@ -582,33 +506,87 @@ impl Scenario {
             .map(|(i, e)| e.resolve(path, i, &calendar, &campaign_ids))
             .collect::<Result<Vec<_>, _>>()?;
 
+        let campaign = Campaign {
+            name: raw.name.clone(),
+            seed: raw.seed,
+            route: raw.route.waypoints,
+            calendar,
+            rover,
+            model,
+            localizer,
+            operator_margin_m,
+            post_drive_imaging_s,
+            max_extension_sols: ops.max_extension_sols.unwrap_or(DEFAULT_MAX_EXTENSION_SOLS),
+            grid,
+            sol_plan: sim::sol_plan::SolPlanParams {
+                imaging_s: i64::from(post_drive_imaging_s),
+                ..sim::sol_plan::SolPlanParams::default()
+            },
+            science,
+        };
+        let legs = campaign::leg_clearances(&campaign);
         Ok(Scenario {
             path: path.to_path_buf(),
             name: raw.name.clone(),
             description: raw.description,
             sha256,
-            campaign: Campaign {
-                name: raw.name,
-                seed: raw.seed,
-                route: raw.route.waypoints,
-                calendar,
-                rover,
-                model,
-                localizer,
-                operator_margin_m,
-                post_drive_imaging_s,
-                max_extension_sols: ops.max_extension_sols.unwrap_or(DEFAULT_MAX_EXTENSION_SOLS),
-                grid,
-                sol_plan: sim::sol_plan::SolPlanParams {
-                    imaging_s: i64::from(post_drive_imaging_s),
-                    ..sim::sol_plan::SolPlanParams::default()
-                },
-                science,
-            },
+            campaign,
             expectations,
             notes,
             has_history,
+            layers,
+            zones: Arc::new(zones),
+            legs,
         })
+    }
+
+    /// The scenario's own seed (`seed` in the file): the one `solsim run` and `compare` use.
+    #[must_use]
+    pub fn seed(&self) -> u64 {
+        self.campaign.seed
+    }
+
+    /// Runs `strategy` under `seed`. Nothing is read or rebuilt: the maps, zones, planning grid
+    /// and leg clearances are the ones loaded once, shared with every other run.
+    #[must_use]
+    pub fn run(&self, strategy: Strategy, seed: u64) -> CampaignOutcome {
+        if seed == self.campaign.seed {
+            campaign::run_campaign(&self.campaign, strategy, &self.legs)
+        } else {
+            let reseeded = Campaign {
+                seed,
+                ..self.campaign.clone()
+            };
+            campaign::run_campaign(&reseeded, strategy, &self.legs)
+        }
+    }
+
+    /// Runs each of `strategies` under `seed`, in parallel; the outcomes come back in the order
+    /// of `strategies` and do not depend on the thread count (each strategy has its own random
+    /// stream).
+    #[must_use]
+    pub fn compare(&self, strategies: &[Strategy], seed: u64) -> Vec<CampaignOutcome> {
+        strategies.par_iter().map(|&s| self.run(s, seed)).collect()
+    }
+
+    /// Runs the strategies the `[[expect]]` entries need (in parallel, under the scenario's
+    /// seed) and checks every entry: one list of mismatches per expectation, in file order
+    /// (empty = the expectation holds).
+    #[must_use]
+    pub fn check_expectations(&self) -> Vec<Vec<Mismatch>> {
+        let mut needed: Vec<Strategy> = self
+            .expectations
+            .iter()
+            .flat_map(Expectation::strategies)
+            .collect();
+        needed.sort_by_key(|s| s.stream_id());
+        needed.dedup();
+        let runs = self.compare(&needed, self.seed());
+        let outcome = |s: Strategy| {
+            let i = needed.iter().position(|&n| n == s).unwrap_or_default();
+            &runs[i]
+        };
+        self.expectations.iter().map(|e| e.check(outcome)).collect()
     }
 
     /// The strategies that make sense for this scenario (`replay` only with historic data).

@@ -12,13 +12,17 @@ use std::path::{Path, PathBuf};
 
 use planner::{PlanError, Problem};
 
-use super::activity_entry::activity;
-use super::campaign_entry::campaign;
-use super::check::Check;
-use super::raw::RawCampaignFile;
+use crate::check::Check;
 use crate::error::ScenarioError;
+use activity_entry::activity;
+pub(crate) use campaign_entry::{campaign, task};
+use raw::RawCampaignFile;
 
-pub use super::activity_entry::{DEFAULT_MAX_SEGMENTS, DEFAULT_MIN_SEGMENT_MIN};
+mod activity_entry;
+mod campaign_entry;
+pub(crate) mod raw;
+
+pub use activity_entry::{DEFAULT_MAX_SEGMENTS, DEFAULT_MIN_SEGMENT_MIN};
 
 /// Why a campaign file cannot be planned. Displayed as one line naming the file and field.
 #[derive(Debug, thiserror::Error)]
@@ -62,7 +66,7 @@ impl CampaignFile {
     /// # Errors
     /// A [`PlanFileError`] naming the file and the first field at fault.
     pub fn load(path: &Path) -> Result<Self, PlanFileError> {
-        let (raw, sha256) = crate::scenario::read_toml::<RawCampaignFile>(path)?;
+        let (raw, sha256) = crate::input::read_toml::<RawCampaignFile>(path)?;
         let file = Self::resolve(path, raw, sha256)?;
         // The planner's own checks, mapped back to the TOML path of the activity at fault.
         planner::Instance::new(&file.problem).map_err(|e| file.planner_error(e))?;
@@ -113,8 +117,8 @@ impl CampaignFile {
     fn resolve(path: &Path, raw: RawCampaignFile, sha256: String) -> Result<Self, ScenarioError> {
         let c = Check { path };
         let s = &raw.sol;
-        let start_s = c.lmst("sol.start_lmst", &s.start_lmst)?;
-        let end_s = c.lmst("sol.end_lmst", &s.end_lmst)?;
+        let start_s = c.lmst_s("sol.start_lmst", &s.start_lmst)?;
+        let end_s = c.lmst_s("sol.end_lmst", &s.end_lmst)?;
         if end_s <= start_s {
             return Err(c.err(
                 "sol.end_lmst",

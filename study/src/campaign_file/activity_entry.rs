@@ -2,15 +2,15 @@
 
 use planner::{Activity, ActivityKind, Drive};
 
-use super::check::{Check, lmst_of};
 use super::raw::{RawActivity, RawDrive};
+use crate::check::{Check, lmst_of};
 use crate::error::ScenarioError;
 
 /// Default shortest drive segment when a drive gives no `min_segment_min`, minutes.
 pub const DEFAULT_MIN_SEGMENT_MIN: f64 = 10.0;
 /// Default most segments of a drive without explicit or state-based split points.
 pub const DEFAULT_MAX_SEGMENTS: u32 = 4;
-pub(super) fn drive(
+pub(crate) fn drive(
     c: &Check<'_>,
     f: &str,
     d: &RawDrive,
@@ -74,7 +74,7 @@ pub(super) fn drive(
     let latest_end_s = d
         .latest_end_lmst
         .as_deref()
-        .map(|t| c.lmst(&format!("{f}.latest_end_lmst"), t))
+        .map(|t| c.lmst_s(&format!("{f}.latest_end_lmst"), t))
         .transpose()?;
     Ok(Drive {
         length_m,
@@ -92,7 +92,7 @@ fn first_segment_s(d: &Drive) -> i64 {
     (3600.0 * first_m / d.rate_m_per_h).ceil() as i64 + 1
 }
 
-pub(super) fn activity(
+pub(crate) fn activity(
     c: &Check<'_>,
     f: &str,
     a: &RawActivity,
@@ -120,7 +120,7 @@ pub(super) fn activity(
         ActivityKind::Drive(d) => first_segment_s(d),
     };
     let earliest = match &a.earliest_start_lmst {
-        Some(t) => c.lmst(&format!("{f}.earliest_start_lmst"), t)?,
+        Some(t) => c.lmst_s(&format!("{f}.earliest_start_lmst"), t)?,
         None => start_s,
     };
     if earliest < start_s || earliest >= end_s {
@@ -135,7 +135,7 @@ pub(super) fn activity(
         ));
     }
     let latest = match &a.latest_start_lmst {
-        Some(t) => c.lmst(&format!("{f}.latest_start_lmst"), t)?,
+        Some(t) => c.lmst_s(&format!("{f}.latest_start_lmst"), t)?,
         None => end_s - duration_s,
     };
     if latest < earliest {

@@ -3,8 +3,8 @@
 
 use planner::{Activity, Campaign, CampaignIntent};
 
-use super::check::{Check, lmst_of};
 use super::raw::{RawCampaign, RawTemplate};
+use crate::check::{Check, lmst_of};
 use crate::error::ScenarioError;
 
 fn template(
@@ -40,7 +40,7 @@ fn template(
 
 /// A task activity from its fields at `{f}.duration_min`, `{f}.power_w` and `{f}.data_mb`
 /// (checked; windows left at 0 for the caller to set).
-pub(super) fn task(
+pub(crate) fn task(
     c: &Check<'_>,
     f: &str,
     id: String,
@@ -79,7 +79,7 @@ fn only_for(
     Ok(())
 }
 
-pub(super) fn campaign(
+pub(crate) fn campaign(
     c: &Check<'_>,
     f: &str,
     rc: &RawCampaign,
@@ -146,11 +146,11 @@ pub(super) fn campaign(
                 ));
             }
             let first_due = match &rc.first_due_lmst {
-                Some(t) => c.lmst(&format!("{f}.first_due_lmst"), t)?,
+                Some(t) => c.lmst_s(&format!("{f}.first_due_lmst"), t)?,
                 None => start_s + tolerance_s,
             };
             let until = match &rc.until_lmst {
-                Some(t) => c.lmst(&format!("{f}.until_lmst"), t)?,
+                Some(t) => c.lmst_s(&format!("{f}.until_lmst"), t)?,
                 None => end_s,
             };
             let tpl = template(c, f, rc.template.as_ref(), &rc.id, activities)?;

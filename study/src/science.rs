@@ -14,9 +14,9 @@ use sim::science::{Periodic, Science, StateBased, Target};
 use sim::sol_plan::SOL_ACTIVITIES;
 use sim::time::SolSeconds;
 
-use super::campaign_entry::{campaign, task};
-use super::check::Check;
-use super::raw::{RawCampaign, RawScience};
+use crate::campaign_file::raw::{RawCampaign, RawScience};
+use crate::campaign_file::{campaign, task};
+use crate::check::Check;
 use crate::error::ScenarioError;
 
 /// A whole sol, s: the window the campaign checks run against.
@@ -67,7 +67,7 @@ pub fn resolve_science(
             (None, None) => None,
             (Some(sol), Some(lmst)) => Some((
                 sol,
-                SolSeconds(c.lmst(&format!("{f}.revealed_lmst"), lmst)? as u32),
+                SolSeconds(c.lmst_s(&format!("{f}.revealed_lmst"), lmst)? as u32),
             )),
             (Some(_), None) => {
                 return Err(c.err(
@@ -167,7 +167,7 @@ pub fn resolve_science(
                 let first_due = rc
                     .first_due_lmst
                     .as_deref()
-                    .map_or(Ok(0), |t| c.lmst(&format!("{f}.first_due_lmst"), t))?;
+                    .map_or(Ok(0), |t| c.lmst_s(&format!("{f}.first_due_lmst"), t))?;
                 if let Some(template) = template_of(&c, &f, rc, instances)? {
                     science.periodic.push(Periodic {
                         campaign,

@@ -1,0 +1,165 @@
+//! Errors in scenario files: every one names the file, the field and what was expected.
+
+use std::path::PathBuf;
+
+/// Why a scenario could not be loaded. Displayed as one line:
+/// `FILE: FIELD: expected WHAT, got VALUE`.
+#[derive(Debug, thiserror::Error)]
+pub enum ScenarioError {
+    /// The file could not be read: missing, not a regular file (a FIFO, a device), larger
+    /// than [`maps::input_file::MAX_TEXT_FILE_BYTES`], or not UTF-8.
+    #[error("{}: {error}", path.display())]
+    Io {
+        /// The scenario file.
+        path: PathBuf,
+        /// Why (part of the message, so not also a `source`).
+        error: maps::input_file::InputFileError,
+    },
+    /// The TOML did not parse or did not match the scenario format.
+    #[error("{}: line {line}, column {column} (`{text}`): {message}", path.display())]
+    Syntax {
+        /// The scenario file.
+        path: PathBuf,
+        /// 1-based line of the offending text.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// The offending line, trimmed.
+        text: String,
+        /// What the parser expected.
+        message: String,
+    },
+    /// A field has a value outside what is allowed.
+    #[error("{}: {field}: expected {expected}, got {got}", path.display())]
+    Field {
+        /// The scenario file.
+        path: PathBuf,
+        /// TOML path of the field, e.g. `sols[3].historic_distance_m`.
+        field: String,
+        /// What is allowed.
+        expected: String,
+        /// What the file holds.
+        got: String,
+    },
+    /// A map raster referenced by the scenario could not be loaded.
+    #[error("{}: {field}: {source}", path.display())]
+    Map {
+        /// The scenario file.
+        path: PathBuf,
+        /// The field naming the raster.
+        field: String,
+        /// What went wrong with the raster.
+        source: Box<maps::RasterError>,
+    },
+    /// The zones file referenced by the scenario could not be loaded.
+    #[error("{}: map.zones: {source}", path.display())]
+    Zones {
+        /// The scenario file.
+        path: PathBuf,
+        /// What went wrong with the zones.
+        source: Box<maps::ZoneError>,
+    },
+}
+
+impl ScenarioError {
+    /// A [`ScenarioError::Field`] error.
+    pub fn field(
+        path: &std::path::Path,
+        field: impl Into<String>,
+        expected: impl Into<String>,
+        got: impl std::fmt::Display,
+    ) -> Self {
+        ScenarioError::Field {
+            path: path.to_path_buf(),
+            field: excerpt(&field.into(), MAX_EXCERPT_CHARS),
+            expected: expected.into(),
+            got: excerpt(&readable_value(&got.to_string()), MAX_EXCERPT_CHARS),
+        }
+    }
+
+    /// Turn a TOML parse error into a one-line [`ScenarioError::Syntax`].
+    #[must_use]
+    pub fn from_toml(path: &std::path::Path, text: &str, err: &toml::de::Error) -> Self {
+        let offset = err.span().map_or(0, |s| s.start).min(text.len());
+        let before = &text[..offset];
+        let line = before.matches('\n').count() + 1;
+        let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+        let column = text[line_start..offset].chars().count() + 1;
+        let line_text = excerpt(
+            text[line_start..].lines().next().unwrap_or("").trim(),
+            MAX_EXCERPT_CHARS,
+        );
+        let message = excerpt(
+            err.message()
+                .lines()
+                .next()
+                .unwrap_or("invalid TOML")
+                .trim(),
+            MAX_EXCERPT_CHARS,
+        );
+        ScenarioError::Syntax {
+            path: path.to_path_buf(),
+            line,
+            column,
+            text: line_text,
+            message,
+        }
+    }
+}
+
+/// Longest excerpt of a file (an offending line, a value, a field) quoted in a message,
+/// characters: a message stays one readable line whatever the input holds.
+pub const MAX_EXCERPT_CHARS: usize = 80;
+
+/// `text` cut to at most `max_chars` characters, with `…` marking the cut.
+#[must_use]
+pub fn excerpt(text: &str, max_chars: usize) -> String {
+    match text.char_indices().nth(max_chars) {
+        None => text.to_string(),
+        Some((end, _)) => {
+            let keep = text[..end].char_indices().nth(max_chars.saturating_sub(1));
+            let cut = keep.map_or(end, |(i, _)| i);
+            format!("{}…", &text[..cut])
+        }
+    }
+}
+
+/// A number as a person reads it: `1e300` rather than 301 digits, `1.5e-9` rather than a run
+/// of zeros; anything that is not a plain number is returned unchanged.
+#[must_use]
+pub fn readable_value(text: &str) -> String {
+    let plain = !text.is_empty()
+        && text
+            .chars()
+            .all(|c| c.is_ascii_digit() || matches!(c, '-' | '.' | '+' | 'e' | 'E'));
+    match text.parse::<f64>() {
+        Ok(v) if plain && v.is_finite() && v != 0.0 && (v.abs() >= 1e9 || v.abs() < 1e-4) => {
+            format!("{v:e}")
+        }
+        _ => text.to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn excerpts_are_capped_on_character_boundaries() {
+        assert_eq!(excerpt("short", 80), "short");
+        let long = "é".repeat(1000);
+        let e = excerpt(&long, 80);
+        assert_eq!(e.chars().count(), 80);
+        assert!(e.ends_with('…'));
+    }
+
+    #[test]
+    fn numbers_print_readably() {
+        assert_eq!(readable_value(&1e300_f64.to_string()), "1e300");
+        assert_eq!(readable_value(&(-2.5e-9_f64).to_string()), "-2.5e-9");
+        assert_eq!(readable_value("0.05"), "0.05");
+        assert_eq!(readable_value("123456"), "123456");
+        assert_eq!(readable_value("\"abc\""), "\"abc\"");
+        assert_eq!(readable_value("NaN"), "NaN");
+    }
+}

@@ -1,0 +1,130 @@
+//! The scenario file exactly as written (serde mirror, `deny_unknown_fields`), before validation.
+
+use std::path::PathBuf;
+
+use serde::Deserialize;
+
+use crate::expect::RawExpectation;
+
+/// The file as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawScenario {
+    pub(crate) name: String,
+    #[serde(default)]
+    pub(crate) description: String,
+    pub(crate) seed: u64,
+    pub(crate) map: RawMap,
+    #[serde(default)]
+    pub(crate) grid: RawGrid,
+    #[serde(default)]
+    pub(crate) rover: RawRover,
+    #[serde(default)]
+    pub(crate) uncertainty: RawUncertainty,
+    #[serde(default)]
+    pub(crate) onboard_localization: RawLocalizer,
+    #[serde(default)]
+    pub(crate) operations: RawOperations,
+    pub(crate) route: RawRoute,
+    pub(crate) sols: Vec<RawSol>,
+    #[serde(default)]
+    pub(crate) science: crate::campaign_file::raw::RawScience,
+    #[serde(default)]
+    pub(crate) expect: Vec<RawExpectation>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawMap {
+    pub(crate) appearance: PathBuf,
+    pub(crate) dem: PathBuf,
+    pub(crate) terrain: PathBuf,
+    pub(crate) zones: PathBuf,
+    #[serde(default)]
+    pub(crate) dem_datum_m: f64,
+    /// Needed only for PNG rasters, which carry no georeference.
+    pub(crate) resolution_m_per_px: Option<f64>,
+    pub(crate) origin_m: Option<[f64; 2]>,
+}
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawGrid {
+    pub(crate) resolution_m: Option<f64>,
+    pub(crate) max_slope_deg: Option<f64>,
+}
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawPerTerrain {
+    pub(crate) sand: Option<f64>,
+    pub(crate) soil: Option<f64>,
+    pub(crate) bedrock: Option<f64>,
+}
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawRover {
+    pub(crate) footprint_radius_m: Option<f64>,
+    pub(crate) drive_rate_m_per_h: Option<f64>,
+    pub(crate) step_m: Option<f64>,
+    pub(crate) waypoint_tolerance_m: Option<f64>,
+    pub(crate) vo_success: Option<RawPerTerrain>,
+    pub(crate) slip_fraction: Option<RawPerTerrain>,
+    pub(crate) terrain_cost: Option<RawPerTerrain>,
+    pub(crate) vo_noise_fraction: Option<f64>,
+    pub(crate) heading_sigma_deg: Option<f64>,
+    pub(crate) edge_buffer_m: Option<f64>,
+}
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawUncertainty {
+    pub(crate) k_vo: Option<f64>,
+    pub(crate) k_novo: Option<f64>,
+    pub(crate) initial_margin_m: Option<f64>,
+}
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawLocalizer {
+    pub(crate) localizer: Option<String>,
+    pub(crate) hbs_slowdown: Option<f64>,
+    pub(crate) mean_error_m: Option<f64>,
+    pub(crate) p99_error_m: Option<f64>,
+    pub(crate) failure_rate: Option<f64>,
+    pub(crate) reported_sigma_m: Option<f64>,
+    pub(crate) operator_margin_m: Option<f64>,
+}
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawOperations {
+    pub(crate) drive_start_lmst: Option<String>,
+    pub(crate) drive_end_lmst: Option<String>,
+    pub(crate) post_drive_imaging_s: Option<u32>,
+    pub(crate) max_extension_sols: Option<u32>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawRoute {
+    pub(crate) waypoints: Vec<[f64; 2]>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawSol {
+    pub(crate) sol: u32,
+    pub(crate) uplink: Option<bool>,
+    pub(crate) restricted: Option<bool>,
+    pub(crate) downlink: Option<bool>,
+    pub(crate) downlink_lmst: Option<String>,
+    pub(crate) drive: Option<bool>,
+    pub(crate) historic_planning: Option<String>,
+    pub(crate) historic_distance_m: Option<f64>,
+    pub(crate) historic_novo_m: Option<f64>,
+    pub(crate) historic_fault: Option<String>,
+    #[serde(default)]
+    pub(crate) note: String,
+}
