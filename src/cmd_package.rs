@@ -58,9 +58,9 @@ use localization::hbs::HbsFile;
 use localization::synthetic::{OrbitalParams, render_orbital, truth_patch};
 use maps::package::{
     BlockRequest, CorridorLayout, PACKAGE_DEM_RESOLUTION_M, RENDER_RESOLUTION_M, TileSpec,
-    encode_png,
 };
 use maps::procedural::noise::{hash2, sub_seed};
+use maps::raster_io::encode_png;
 use maps::{GeoTransform, MapLayers, Raster};
 
 use crate::report::write_atomic;

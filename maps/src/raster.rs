@@ -140,6 +140,45 @@ impl<T: Copy> Raster<T> {
         let (x0, y0, x1, y1) = self.extent_m();
         x_m >= x0 && x_m < x1 && y_m > y0 && y_m <= y1
     }
+
+    /// The `width × height` pixels starting at pixel `(col0, row0)`, placed where they lie on
+    /// the map (the origin moves to the north-west corner of pixel `(col0, row0)`), or `None`
+    /// if that window does not lie wholly on the raster (or `data` is not `width × height`
+    /// long). An empty window (`width` or `height` 0) inside the raster is an empty raster.
+    #[must_use]
+    pub fn try_crop(
+        &self,
+        col0: usize,
+        row0: usize,
+        width: usize,
+        height: usize,
+    ) -> Option<Raster<T>> {
+        let inside = |start: usize, len: usize, side: usize| {
+            start.checked_add(len).is_some_and(|end| end <= side)
+        };
+        if !(inside(col0, width, self.width)
+            && inside(row0, height, self.height)
+            && self.width.checked_mul(self.height) == Some(self.data.len()))
+        {
+            return None;
+        }
+        let mut data = Vec::with_capacity(width * height);
+        for row in row0..row0 + height {
+            let start = row * self.width + col0;
+            data.extend_from_slice(&self.data[start..start + width]);
+        }
+        let res = self.geo.resolution_m_per_px;
+        Some(Raster {
+            width,
+            height,
+            geo: GeoTransform::new(
+                self.geo.origin_m[0] + col0 as f64 * res,
+                self.geo.origin_m[1] - row0 as f64 * res,
+                res,
+            ),
+            data,
+        })
+    }
 }
 
 impl Raster<f32> {
@@ -211,6 +250,33 @@ mod tests {
         assert_eq!(ras.sample_nearest(-0.1, 5.0), None);
         assert_eq!(ras.sample_nearest(5.0, 10.5), None);
         assert_eq!(ras.sample_nearest(f64::NAN, 5.0), None);
+    }
+
+    #[test]
+    fn crop_keeps_the_pixels_and_their_place_on_the_map() {
+        let g = GeoTransform::new(100.0, 500.0, 2.0);
+        let mut ras = Raster::filled(5, 4, g, 0u16);
+        for (i, v) in ras.data.iter_mut().enumerate() {
+            *v = i as u16;
+        }
+        let c = ras.try_crop(1, 2, 3, 2).unwrap_or_else(|| panic!("inside"));
+        assert_eq!((c.width, c.height), (3, 2));
+        assert_eq!(c.data, [11, 12, 13, 16, 17, 18]);
+        assert_eq!(c.geo, GeoTransform::new(102.0, 496.0, 2.0));
+        // Every pixel keeps its map position.
+        assert_eq!(
+            c.sample_nearest(103.0, 495.0),
+            ras.sample_nearest(103.0, 495.0)
+        );
+        // The whole raster, an empty window, and windows past an edge or overflowing.
+        assert_eq!(ras.try_crop(0, 0, 5, 4), Some(ras.clone()));
+        assert_eq!(ras.try_crop(5, 4, 0, 0).map(|r| r.data.len()), Some(0));
+        assert_eq!(ras.try_crop(3, 0, 3, 1), None);
+        assert_eq!(ras.try_crop(0, 3, 1, 2), None);
+        assert_eq!(ras.try_crop(6, 0, 0, 0), None);
+        assert_eq!(ras.try_crop(usize::MAX, 0, 2, 1), None);
+        let empty = Raster::filled(0, 0, g, 0u8);
+        assert_eq!(empty.try_crop(0, 0, 1, 1), None);
     }
 
     #[test]

@@ -28,7 +28,7 @@ use crate::raster::{GeoTransform, Raster};
 pub use error::{DEM_CM_MAX_M, RasterError};
 pub use geotiff::{GeoTiff, read_geotiff, write_geotiff};
 pub use map_layers::MapLayers;
-pub use png::{read_png, write_png};
+pub use png::{encode_png, read_png, write_png};
 
 /// Placeholder path in errors about a raster that has no file yet.
 const IN_MEMORY: &str = "<DEM in memory>";

@@ -108,32 +108,35 @@ pub(super) fn read_png_any<T: Sample>(
     })
 }
 
+/// Encodes a single-channel 8-bit (`u8`) or 16-bit (`u16`) gray raster as PNG bytes with the
+/// strongest compression `image` offers (deflate level "high", adaptive row filters), for
+/// callers that write and checksum the bytes themselves ([`write_png`] writes a file, with
+/// the default compression).
+///
+/// # Errors
+/// [`RasterError::EmptyRaster`] / [`RasterError::DataLength`] for a malformed raster,
+/// [`RasterError::Encode`] if the encoder refuses; `path` names the future file in messages
+/// only.
+pub fn encode_png<T: PngSample>(raster: &Raster<T>, path: &Path) -> Result<Vec<u8>, RasterError> {
+    use image::codecs::png::{CompressionType, FilterType};
+    let (bytes, color) = png_bytes(path, &raster.data)?;
+    check_shape(path, raster)?;
+    let (w, h) = png_dimensions(path, raster)?;
+    let mut out = Vec::new();
+    PngEncoder::new_with_quality(&mut out, CompressionType::Best, FilterType::Adaptive)
+        .write_image(&bytes, w, h, color)
+        .map_err(|e| RasterError::Encode {
+            path: path.to_path_buf(),
+            detail: e.to_string(),
+        })?;
+    Ok(out)
+}
+
 /// [`write_png`] for any [`Sample`]; `f32` is refused.
 pub(super) fn write_png_any<T: Sample>(path: &Path, raster: &Raster<T>) -> Result<(), RasterError> {
-    let (bytes, color) = match T::as_samples(&raster.data) {
-        SamplesRef::U8(d) => (d.to_vec(), ExtendedColorType::L8),
-        SamplesRef::U16(d) => (
-            d.iter().flat_map(|v| v.to_ne_bytes()).collect(),
-            ExtendedColorType::L16,
-        ),
-        SamplesRef::F32(_) => {
-            return Err(RasterError::UnsupportedFormat {
-                path: path.to_path_buf(),
-                expected: PNG_ONLY_INTEGERS,
-                found: ext_of(path),
-            });
-        }
-    };
+    let (bytes, color) = png_bytes(path, &raster.data)?;
     check_shape(path, raster)?;
-    let too_big = |_| RasterError::Encode {
-        path: path.to_path_buf(),
-        detail: format!(
-            "{}x{} px exceeds the PNG limit of 2^31 - 1 px per side",
-            raster.width, raster.height
-        ),
-    };
-    let w = u32::try_from(raster.width).map_err(too_big)?;
-    let h = u32::try_from(raster.height).map_err(too_big)?;
+    let (w, h) = png_dimensions(path, raster)?;
     write_atomic(path, |out| {
         PngEncoder::new(out)
             .write_image(&bytes, w, h, color)
@@ -148,6 +151,41 @@ pub(super) fn write_png_any<T: Sample>(path: &Path, raster: &Raster<T>) -> Resul
                 },
             })
     })
+}
+
+/// The samples as the PNG encoder takes them (16-bit native-endian) and their colour type;
+/// `f32` is refused.
+fn png_bytes<T: Sample>(
+    path: &Path,
+    data: &[T],
+) -> Result<(Vec<u8>, ExtendedColorType), RasterError> {
+    match T::as_samples(data) {
+        SamplesRef::U8(d) => Ok((d.to_vec(), ExtendedColorType::L8)),
+        SamplesRef::U16(d) => Ok((
+            d.iter().flat_map(|v| v.to_ne_bytes()).collect(),
+            ExtendedColorType::L16,
+        )),
+        SamplesRef::F32(_) => Err(RasterError::UnsupportedFormat {
+            path: path.to_path_buf(),
+            expected: PNG_ONLY_INTEGERS,
+            found: ext_of(path),
+        }),
+    }
+}
+
+/// The raster's width and height as PNG stores them.
+fn png_dimensions<T>(path: &Path, raster: &Raster<T>) -> Result<(u32, u32), RasterError> {
+    let too_big = |_| RasterError::Encode {
+        path: path.to_path_buf(),
+        detail: format!(
+            "{}x{} px exceeds the PNG limit of 2^31 - 1 px per side",
+            raster.width, raster.height
+        ),
+    };
+    Ok((
+        u32::try_from(raster.width).map_err(too_big)?,
+        u32::try_from(raster.height).map_err(too_big)?,
+    ))
 }
 
 fn decode_error(path: &Path) -> impl Fn(ImageError) -> RasterError + '_ {
@@ -176,4 +214,35 @@ fn describe(c: ColorType) -> String {
         _ => return format!("{c:?}"),
     }
     .to_owned()
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn encoded_pngs_decode_to_the_same_samples() {
+        let geo = GeoTransform::new(0.0, 10.0, 1.0);
+        let mut r = Raster::filled(7, 5, geo, 0u16);
+        for (i, v) in r.data.iter_mut().enumerate() {
+            *v = (i as u16).wrapping_mul(40_503);
+        }
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("t.png");
+        std::fs::write(&path, encode_png(&r, &path).unwrap()).unwrap();
+        assert_eq!(read_png::<u16>(&path, geo).unwrap(), r);
+        let a = Raster::filled(3, 2, geo, 200u8);
+        std::fs::write(&path, encode_png(&a, &path).unwrap()).unwrap();
+        assert_eq!(read_png::<u8>(&path, geo).unwrap(), a);
+        // A raster whose data does not match its size is an error, not an encoder panic.
+        let bad = Raster {
+            data: vec![0u8; 5],
+            ..a
+        };
+        assert!(matches!(
+            encode_png(&bad, &path),
+            Err(RasterError::DataLength { .. })
+        ));
+    }
 }
