@@ -19,7 +19,7 @@ use localization::matcher::{
     JEZERO_TRUE_SCALE_LATITUDE_DEG, LocalizeError, MatchParams, MatchResult, Method, OrbitalMap,
     RoverImages, localize,
 };
-use maps::raster_io::{dem_from_cm, read_geotiff, read_raster};
+use maps::raster_io::{read_dem_with_holes, read_raster, read_raster_with_nodata};
 use maps::{GeoTransform, Raster, RasterError};
 use serde_json::json;
 
@@ -31,8 +31,6 @@ pub const DEFAULT_RADIUS_M: f64 = 30.0;
 /// metres per pixel (the flight rover DEM's 1 m cells).
 pub const DEFAULT_ROVER_DEM_RESOLUTION_M_PER_PX: f64 = 1.0;
 
-/// What a DEM file must hold, for error messages.
-const DEM_EXPECTED: &str = "a single-band 16-bit unsigned (cm) or 32-bit float (m) DEM";
 /// Two resolutions or origins closer than this (relative) are the same.
 const SAME_TOLERANCE: f64 = 1e-9;
 
@@ -182,74 +180,6 @@ fn check_flags(a: &LocalizeArgs) -> anyhow::Result<Method> {
     Ok(method)
 }
 
-/// Extension of `path`, lowercase.
-fn ext(path: &Path) -> String {
-    path.extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or("")
-        .to_ascii_lowercase()
-}
-
-/// An 8-bit raster and the GeoTIFF's no-data value, if it declares one.
-fn read_u8(
-    path: &Path,
-    georef: Option<GeoTransform>,
-) -> Result<(Raster<u8>, Option<f64>), RasterError> {
-    match ext(path).as_str() {
-        "tif" | "tiff" => read_geotiff::<u8>(path, georef).map(|g| (g.raster, g.nodata)),
-        _ => read_raster::<u8>(path, georef).map(|r| (r, None)),
-    }
-}
-
-/// A DEM in metres with holes: 16-bit centimetres (PNG or GeoTIFF, datum 0) or 32-bit float
-/// metres (GeoTIFF); cells equal to the GeoTIFF's no-data value become NaN.
-fn read_dem_with_holes(
-    path: &Path,
-    georef: Option<GeoTransform>,
-) -> Result<Raster<f32>, RasterError> {
-    let wrong = |e: RasterError| match e {
-        RasterError::WrongSampleFormat { path, found, .. } => RasterError::WrongSampleFormat {
-            path,
-            expected: DEM_EXPECTED,
-            found,
-        },
-        e => e,
-    };
-    match ext(path).as_str() {
-        "tif" | "tiff" => match read_geotiff::<f32>(path, georef) {
-            Ok(g) => {
-                let mut dem = g.raster;
-                if let Some(n) = g.nodata {
-                    for h in &mut dem.data {
-                        if f64::from(*h) == n {
-                            *h = f32::NAN;
-                        }
-                    }
-                }
-                Ok(dem)
-            }
-            Err(RasterError::WrongSampleFormat { .. }) => {
-                let g = read_geotiff::<u16>(path, georef).map_err(wrong)?;
-                let mut dem = dem_from_cm(&g.raster, 0.0);
-                if let Some(n) = g.nodata {
-                    for (h, &cm) in dem.data.iter_mut().zip(&g.raster.data) {
-                        if f64::from(cm) == n {
-                            *h = f32::NAN;
-                        }
-                    }
-                }
-                Ok(dem)
-            }
-            Err(e) => Err(e),
-        },
-        "png" => read_raster::<u16>(path, georef)
-            .map(|r| dem_from_cm(&r, 0.0))
-            .map_err(wrong),
-        // Any other extension: the reader's "expected a .png, .tif or .tiff file".
-        _ => read_raster::<f32>(path, georef),
-    }
-}
-
 /// Reads a map-frame raster: the GeoTIFF's georeference, else the flags'.
 fn read_placed<R>(
     flag: &str,
@@ -351,7 +281,7 @@ fn read_mask(
     (width, height): (usize, usize),
     of: (&str, &Path),
 ) -> anyhow::Result<Vec<bool>> {
-    let (mask, _) = read_u8(path, Some(GeoTransform::new(0.0, 0.0, 1.0)))
+    let (mask, _) = read_raster_with_nodata::<u8>(path, Some(GeoTransform::new(0.0, 0.0, 1.0)))
         .map_err(|e| anyhow::anyhow!("{flag} {e}"))?;
     if (mask.width, mask.height) != (width, height) {
         bail!(
@@ -466,7 +396,7 @@ pub fn load(a: &LocalizeArgs) -> anyhow::Result<LocalizeInputs> {
                 "--map-dem-resolution",
                 a.map_dem_resolution,
             ),
-            |g| read_dem_with_holes(path, g),
+            |g| read_dem_with_holes(path, 0.0, g),
             |r| r.geo,
         )?),
         None => None,
@@ -477,7 +407,7 @@ pub fn load(a: &LocalizeArgs) -> anyhow::Result<LocalizeInputs> {
         &a.ortho,
         ("--ortho-resolution", a.ortho_resolution),
         map_res,
-        |g| read_u8(&a.ortho, g),
+        |g| read_raster_with_nodata::<u8>(&a.ortho, g),
         |(r, _)| &mut r.geo,
     )?;
     let ortho_res = ortho.geo.resolution_m_per_px;
@@ -537,7 +467,7 @@ pub fn load(a: &LocalizeArgs) -> anyhow::Result<LocalizeInputs> {
                 path,
                 ("--rover-dem-resolution", a.rover_dem_resolution),
                 DEFAULT_ROVER_DEM_RESOLUTION_M_PER_PX,
-                |g| read_dem_with_holes(path, g),
+                |g| read_dem_with_holes(path, 0.0, g),
                 |r| &mut r.geo,
             )?;
             let mut dem = dem;

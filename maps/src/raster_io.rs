@@ -16,6 +16,7 @@
 mod error;
 mod geotiff;
 mod map_layers;
+mod nodata;
 mod png;
 
 use std::fs::{self, File};
@@ -28,6 +29,7 @@ use crate::raster::{GeoTransform, Raster};
 pub use error::{DEM_CM_MAX_M, RasterError};
 pub use geotiff::{GeoTiff, read_geotiff, write_geotiff};
 pub use map_layers::MapLayers;
+pub use nodata::{read_dem_with_holes, read_raster_with_nodata};
 pub use png::{encode_png, read_png, write_png};
 
 /// Placeholder path in errors about a raster that has no file yet.
@@ -257,7 +259,7 @@ pub fn read_dem(
     datum_m: f64,
     georef: Option<GeoTransform>,
 ) -> Result<Raster<f32>, RasterError> {
-    const EXPECTED: &str = "a single-band 16-bit unsigned (cm) or 32-bit float (m) DEM";
+    const EXPECTED: &str = nodata::DEM_EXPECTED;
     let dem = match Format::of(path)? {
         Format::Png => {
             let geo = georef.ok_or_else(|| RasterError::MissingGeoreference {
