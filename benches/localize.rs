@@ -155,22 +155,6 @@ fn bench_b1(c: &mut Criterion) {
     g.finish();
 }
 
-/// Crop `r` to `cols × rows` pixels starting at (`col0`, `row0`).
-fn crop<T: Copy>(r: &Raster<T>, col0: usize, row0: usize, cols: usize, rows: usize) -> Raster<T> {
-    let mut data = Vec::with_capacity(cols * rows);
-    for row in row0..row0 + rows {
-        data.extend_from_slice(&r.data[row * r.width + col0..row * r.width + col0 + cols]);
-    }
-    let (x, y) = r.geo.center_of(col0, row0);
-    let res = r.geo.resolution_m_per_px;
-    Raster {
-        width: cols,
-        height: rows,
-        geo: GeoTransform::new(x - res / 2.0, y + res / 2.0, res),
-        data,
-    }
-}
-
 fn bench_b2(c: &mut Criterion) {
     let geo = GeoTransform::new(0.0, 200.0, 0.25);
     let map = sinusoid_texture(800, 800, geo, 11);
@@ -183,13 +167,17 @@ fn bench_b2(c: &mut Criterion) {
     };
     let truth = [100.0, 90.0];
     let (tc, tr) = map.geo.pixel_of(truth[0], truth[1]);
-    let mut ortho = crop(&map, tc as usize - T / 2, tr as usize - T / 2, T, T);
+    let mut ortho = map
+        .try_crop(tc as usize - T / 2, tr as usize - T / 2, T, T)
+        .expect("B2 template on the map");
     for v in &mut ortho.data {
         *v = (f64::from(*v).powf(0.8) * 2.0).min(255.0) as u8;
     }
     let valid = template_validity(SEED_B1 + 2);
     let (dc, dr) = dem.geo.pixel_of(truth[0], truth[1]);
-    let mut rdem = crop(&dem, dc as usize - 30, dr as usize - 30, 60, 60);
+    let mut rdem = dem
+        .try_crop(dc as usize - 30, dr as usize - 30, 60, 60)
+        .expect("B2 rover DEM on the map");
     for v in &mut rdem.data {
         *v += 3.0;
     }

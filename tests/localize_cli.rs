@@ -484,19 +484,9 @@ fn nan_and_out_of_range_flags_are_rejected() {
 
 /// Pixels 285..315 of `r` in both axes, placed as `gdal_translate -srcwin 285 285 30 30` places
 /// them.
-fn crop<T: Copy>(r: &Raster<T>) -> Raster<T> {
-    let mut data = Vec::new();
-    for row in 285..315 {
-        data.extend_from_slice(&r.data[row * r.width + 285..row * r.width + 315]);
-    }
-    let [x0, y0] = r.geo.origin_m;
-    let res = r.geo.resolution_m_per_px;
-    Raster {
-        width: 30,
-        height: 30,
-        geo: GeoTransform::new(x0 + 285.0 * res, y0 - 285.0 * res, res),
-        data,
-    }
+fn srcwin<T: Copy>(r: &Raster<T>) -> Raster<T> {
+    r.try_crop(285, 285, 30, 30)
+        .expect("the README's window lies on the map")
 }
 
 /// The README's example, command for command: `gdal_translate -srcwin 285 285 30 30` crops of
@@ -516,11 +506,11 @@ fn readme_example_runs_as_printed() {
     let dir = tempfile::tempdir().expect("tempdir");
     write_geotiff(
         &dir.path().join("ortho.tif"),
-        &crop(&layers.appearance),
+        &srcwin(&layers.appearance),
         None,
     )
     .expect("ortho");
-    write_dem(&dir.path().join("rover-dem.tif"), &crop(&layers.dem), 0.0).expect("rover DEM");
+    write_dem(&dir.path().join("rover-dem.tif"), &srcwin(&layers.dem), 0.0).expect("rover DEM");
     let readme = std::fs::read_to_string(root().join("README.md")).expect("README");
     let cmd = readme
         .split("```sh\n")
