@@ -198,38 +198,53 @@ pub fn add_world_noise(
 /// Renders one block: the 25 cm appearance and the 1 m DEM of the rectangle `req`, a pure
 /// function of (`s`, map position) up to shadows longer than the margin.
 ///
+/// The block is rendered inside a square patch of the block plus [`RenderSettings::margin_m`]
+/// on every side. Near the map's edge the patch is shifted inwards to stay on the map (the
+/// block stays inside it: the layout puts blocks on the map), and on a map smaller than the
+/// patch it shrinks to the map, down to the block itself.
+///
 /// # Errors
-/// A [`localization::synthetic::SyntheticError`] (e.g. a map smaller than the block plus its
-/// margin).
+/// A [`SyntheticError`](localization::synthetic::SyntheticError) from the renderer, e.g.
+/// `PatchOutsideMap` for a block that does not fit in a square patch on the map (a map
+/// narrower in one direction than the block is long in the other), or `RegionOutsidePatch` if
+/// the block is not on its rendered patch.
 pub fn render_block(
     layers: &MapLayers,
     req: &BlockRequest,
     s: &RenderSettings,
 ) -> Result<(Raster<u8>, Raster<f32>), localization::synthetic::SyntheticError> {
+    use localization::synthetic::SyntheticError;
     let [bw, bh] = req.size_m;
-    let side = bw.max(bh) + 2 * s.margin_m;
-    let side_m = side as f64;
     let lattice = layers.dem.geo.origin_m;
     let (x0, y0, x1, y1) = map_extent(layers);
+    // Whole metres from the lattice origin (east, south), the map rounded inwards: the patch
+    // grid is the package grid.
+    let (west, east) = (
+        (x0 - lattice[0] - 1e-9).ceil(),
+        (x1 - lattice[0] + 1e-9).floor(),
+    );
+    let (north, south) = (
+        (lattice[1] - y1 - 1e-9).ceil(),
+        (lattice[1] - y0 + 1e-9).floor(),
+    );
+    let margin_m = s.margin_m as f64;
+    let block_side_m = bw.max(bh) as f64;
+    let side_m = (block_side_m + 2.0 * margin_m)
+        .min(east - west)
+        .min(south - north)
+        .max(block_side_m);
     // North-west corner of the patch: the margin around the block, shifted inwards at the map
-    // edge (whole metres from the lattice, so the patch grid is the package grid).
-    let mut ox = req.origin_m[0] - s.margin_m as f64;
-    let mut oy = req.origin_m[1] + s.margin_m as f64;
-    let snap_in_x = |v: f64, up: bool| {
-        let k = (v - lattice[0]) - if up { -1e-9 } else { 1e-9 };
-        lattice[0] + if up { k.ceil() } else { k.floor() }
-    };
-    let snap_in_y = |v: f64, up: bool| {
-        let k = (lattice[1] - v) - if up { -1e-9 } else { 1e-9 };
-        lattice[1] - if up { k.ceil() } else { k.floor() }
-    };
-    ox = ox
-        .min(snap_in_x(x1 - side_m, false))
-        .max(snap_in_x(x0, true));
-    oy = oy
-        .max(snap_in_y(y0 + side_m, false))
-        .min(snap_in_y(y1, true));
-    let center = [ox + 0.5 * side_m, oy - 0.5 * side_m];
+    // edge.
+    let px = ((req.origin_m[0] - lattice[0]).round() - margin_m)
+        .min(east - side_m)
+        .max(west);
+    let py = ((lattice[1] - req.origin_m[1]).round() - margin_m)
+        .min(south - side_m)
+        .max(north);
+    let center = [
+        lattice[0] + px + 0.5 * side_m,
+        lattice[1] - py - 0.5 * side_m,
+    ];
     let patch = truth_patch(layers, center, 0.5 * side_m, s.truth_seed)?;
     // The patch-indexed noises off: [`add_world_noise`] adds them by world pixel.
     let quiet = OrbitalParams {
@@ -240,31 +255,27 @@ pub fn render_block(
     let orbital = render_orbital(&patch, &quiet, s.orbital_seed)?;
     let k = (1.0 / RENDER_RESOLUTION_M).round() as usize;
     let pgeo = patch.height_m.geo;
-    let c0 = (req.origin_m[0] - pgeo.origin_m[0]).round() as usize;
-    let r0 = (pgeo.origin_m[1] - req.origin_m[1]).round() as usize;
-    let mut app = crop(&orbital.appearance, c0 * k, r0 * k, bw * k, bh * k);
-    let mut dem = crop(&orbital.dem, c0, r0, bw, bh);
+    let c0 = (req.origin_m[0] - pgeo.origin_m[0]).round();
+    let r0 = (pgeo.origin_m[1] - req.origin_m[1]).round();
+    let outside = || {
+        let [x, y] = req.origin_m;
+        let (px0, py0, px1, py1) = patch.height_m.extent_m();
+        SyntheticError::RegionOutsidePatch {
+            region_extent_m: [x, y - bh as f64, x + bw as f64, y],
+            patch_extent_m: [px0, py0, px1, py1],
+        }
+    };
+    if !(c0 >= 0.0 && r0 >= 0.0) {
+        return Err(outside());
+    }
+    let (c0, r0) = (c0 as usize, r0 as usize);
+    let mut app = orbital
+        .appearance
+        .try_crop(c0 * k, r0 * k, bw * k, bh * k)
+        .ok_or_else(outside)?;
+    let mut dem = orbital.dem.try_crop(c0, r0, bw, bh).ok_or_else(outside)?;
     add_world_noise(&mut app, &mut dem, s, lattice);
     Ok((app, dem))
-}
-
-/// The part of `r` starting at pixel `(c0, r0)`, `w × h` pixels.
-fn crop<T: Copy>(r: &Raster<T>, c0: usize, r0: usize, w: usize, h: usize) -> Raster<T> {
-    let mut data = Vec::with_capacity(w * h);
-    for row in r0..r0 + h {
-        data.extend_from_slice(&r.data[row * r.width + c0..row * r.width + c0 + w]);
-    }
-    let res = r.geo.resolution_m_per_px;
-    Raster {
-        width: w,
-        height: h,
-        geo: GeoTransform::new(
-            r.geo.origin_m[0] + c0 as f64 * res,
-            r.geo.origin_m[1] - r0 as f64 * res,
-            res,
-        ),
-        data,
-    }
 }
 
 /// Where both the DEM and the terrain layer exist, `(x0, y0, x1, y1)` metres.

@@ -124,6 +124,17 @@ pub enum SyntheticError {
         /// Patch extent `[min_x, min_y, max_x, max_y]`, metres.
         patch_extent_m: [f64; 4],
     },
+    /// A region to take from a rendered patch (a block of a map package) is not entirely on
+    /// the patch.
+    #[error(
+        "region {region_extent_m:?} is not entirely on the rendered patch {patch_extent_m:?} (x0, y0, x1, y1 in m)"
+    )]
+    RegionOutsidePatch {
+        /// Region extent `[min_x, min_y, max_x, max_y]`, metres.
+        region_extent_m: [f64; 4],
+        /// Patch extent `[min_x, min_y, max_x, max_y]`, metres.
+        patch_extent_m: [f64; 4],
+    },
     /// A hand-built truth patch whose rasters disagree: different sizes, or a sample count
     /// that is not width × height.
     #[error(
