@@ -23,8 +23,12 @@ pub struct GenerateArgs {
 }
 
 /// Run `solsim map generate`.
-pub fn generate(args: &GenerateArgs, out: &mut dyn std::io::Write) -> anyhow::Result<()> {
-    let (params, datum_m) = load_recipe(&args.recipe)?;
+pub fn generate(
+    args: &GenerateArgs,
+    budget: maps::MemoryBudget,
+    out: &mut dyn std::io::Write,
+) -> anyhow::Result<()> {
+    let (params, datum_m) = load_recipe(&args.recipe, budget)?;
     let layers = procedural::generate(&params);
     layers
         .write_dir(&args.out, datum_m)

@@ -17,7 +17,8 @@
 //! Every value is a pure function of (seed, map position), so blocks join without seams and the
 //! package does not depend on the block size, the tile size, the order or the thread count:
 //!
-//! - one truth seed and one orbital seed for the whole package (derived from the scenario seed):
+//! - one truth seed and one orbital seed for the whole package, the same the simulator's onboard
+//!   localizer matches against ([`sim::seeds`]: one world per scenario seed):
 //!   the truth terrain, the between-epoch albedo change, the ripple migration and the
 //!   orthorectification displacement are fields of map position under those seeds;
 //! - [`render_orbital`] draws its sensor noise and DEM noise by *patch* pixel index, so the
@@ -59,9 +60,10 @@ use localization::synthetic::{OrbitalParams, render_orbital, truth_patch};
 use maps::package::{
     BlockRequest, CorridorLayout, PACKAGE_DEM_RESOLUTION_M, RENDER_RESOLUTION_M, TileSpec,
 };
-use maps::procedural::noise::{hash2, sub_seed};
+use maps::procedural::noise::hash2;
 use maps::raster_io::encode_png;
 use maps::{GeoTransform, MapLayers, Raster};
+use sim::seeds::{Purpose, stream_seed};
 
 use crate::report::write_atomic;
 use study::Scenario;
@@ -71,11 +73,6 @@ use study::Scenario;
 pub const BLOCK_M: usize = 128;
 /// Terrain rendered around each block and cropped off, metres (see the module docs).
 pub const MARGIN_M: usize = 24;
-/// Salts of the package's seeds under the scenario seed.
-const SALT_TRUTH: u64 = 0x5041_434B_0001;
-const SALT_ORBITAL: u64 = 0x5041_434B_0002;
-const SALT_SENSOR_NOISE: u64 = 0x5041_434B_0003;
-const SALT_DEM_NOISE: u64 = 0x5041_434B_0004;
 /// The manifest's file name.
 pub const MANIFEST_FILE: &str = "manifest.json";
 
@@ -127,10 +124,10 @@ impl RenderSettings {
     #[must_use]
     pub fn for_seed(seed: u64) -> Self {
         Self {
-            truth_seed: sub_seed(seed, SALT_TRUTH),
-            orbital_seed: sub_seed(seed, SALT_ORBITAL),
-            sensor_noise_seed: sub_seed(seed, SALT_SENSOR_NOISE),
-            dem_noise_seed: sub_seed(seed, SALT_DEM_NOISE),
+            truth_seed: stream_seed(seed, Purpose::WorldTruth, 0).seed,
+            orbital_seed: stream_seed(seed, Purpose::WorldOrbital, 0).seed,
+            sensor_noise_seed: stream_seed(seed, Purpose::PackageSensorNoise, 0).seed,
+            dem_noise_seed: stream_seed(seed, Purpose::PackageDemNoise, 0).seed,
             orbital: OrbitalParams {
                 dust_devil_tracks_per_ha: 0.0,
                 ..OrbitalParams::default()
@@ -376,7 +373,11 @@ fn datum_for(layers: &MapLayers, layout: &CorridorLayout) -> f64 {
 }
 
 /// Run `solsim map package`: render, mask, write, and print the sizes.
-pub fn run(args: &PackageArgs, out: &mut dyn std::io::Write) -> anyhow::Result<()> {
+pub fn run(
+    args: &PackageArgs,
+    budget: maps::MemoryBudget,
+    out: &mut dyn std::io::Write,
+) -> anyhow::Result<()> {
     let start = Instant::now();
     if !(args.corridor_m.is_finite() && args.corridor_m > 0.0) {
         anyhow::bail!(
@@ -384,7 +385,25 @@ pub fn run(args: &PackageArgs, out: &mut dyn std::io::Write) -> anyhow::Result<(
             args.corridor_m
         );
     }
-    let scenario = Scenario::load(&args.scenario)?;
+    // One output tile at a time is held (appearance u8, DEM f32 and its 16-bit copy) with
+    // the render blocks that fill it (each with its margin, rendered at 25 cm).
+    let res_m = if args.resolution_m >= RENDER_RESOLUTION_M {
+        args.resolution_m
+    } else {
+        RENDER_RESOLUTION_M
+    };
+    let tile_px = (args.tile_m as f64 / res_m).ceil();
+    let block_px = (args.block_m + 2 * MARGIN_M) as f64 / RENDER_RESOLUTION_M;
+    let need = tile_px * tile_px + 6.0 * (args.tile_m as f64).powi(2) + 16.0 * block_px * block_px;
+    if !(need <= budget.limit_bytes as f64) {
+        anyhow::bail!(
+            "--tile-m: expected tiles that fit the memory budget ({}; --memory-budget-mib), got {} m ({})",
+            maps::input_file::human_bytes(budget.limit_bytes),
+            args.tile_m,
+            maps::input_file::human_bytes(need.min(u64::MAX as f64) as u64)
+        );
+    }
+    let scenario = Scenario::load_within(&args.scenario, budget)?;
     let layers = &*scenario.layers;
     std::fs::create_dir_all(&args.out).with_context(|| {
         format!(
@@ -403,14 +422,14 @@ pub fn run(args: &PackageArgs, out: &mut dyn std::io::Write) -> anyhow::Result<(
         route,
         args.corridor_m,
         args.resolution_m,
-        map_extent(&layers),
+        map_extent(layers),
         layers.dem.geo.origin_m,
         args.tile_m,
         args.block_m,
     )
     .with_context(|| format!("{}", args.scenario.display()))?;
     let settings = RenderSettings::for_seed(scenario.campaign.seed);
-    let datum_m = datum_for(&layers, &layout);
+    let datum_m = datum_for(layers, &layout);
 
     let mut tiles = Vec::new();
     for tile in &layout.tiles {
@@ -419,7 +438,7 @@ pub fn run(args: &PackageArgs, out: &mut dyn std::io::Write) -> anyhow::Result<(
         let dem_name = format!("dem_cm_{tag}.png");
         let dem_path = args.out.join(&dem_name);
         let rasters = layout.assemble_tile(tile, datum_m, &dem_path, |req| {
-            render_block(&layers, req, &settings).map_err(anyhow::Error::from)
+            render_block(layers, req, &settings).map_err(anyhow::Error::from)
         })?;
         let app_bytes = encode_png(&rasters.appearance, &args.out.join(&app_name))?;
         let dem_bytes = encode_png(&rasters.dem_cm, &dem_path)?;

@@ -20,8 +20,10 @@
 
 use anyhow::{Context, anyhow, bail};
 use maps::ZoneSet;
+use maps::zone::MAX_COORDINATE_M;
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use study::error::{MAX_EXCERPT_CHARS, excerpt, readable_value};
 
 /// Check points against a map's zones: distance to the nearest keep-out zone, distance to the
 /// edge of the keep-in area, and the largest position uncertainty each point tolerates
@@ -184,22 +186,27 @@ fn write_json(rows: &[Row<'_>], out: &mut dyn Write) -> std::io::Result<()> {
 
 /// A point from the CSV.
 #[derive(Debug, Clone, PartialEq)]
-struct NamedPoint {
-    name: String,
-    xy: [f64; 2],
+pub struct NamedPoint {
+    /// The `name` column, or `point-<k>`.
+    pub name: String,
+    /// `x_m`, `y_m`: map metres.
+    pub xy: [f64; 2],
 }
 
 /// Read the points CSV at `path`.
 fn read_points(path: &Path) -> anyhow::Result<Vec<NamedPoint>> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| anyhow!("{}: cannot read points file: {e}", path.display()))?;
+    let text = maps::input_file::read_text_file(path)
+        .map_err(|e| anyhow!("{}: points file: {e}", path.display()))?;
     parse_points(&text, path)
 }
 
 /// Parse points CSV text: a header naming `x_m`, `y_m` and optionally `name` (any order, each
 /// once, nothing else), then one row per point; blank lines are skipped. A row without a name
 /// (or an empty one) is called `point-<k>`, `k` counting data rows from 0.
-fn parse_points(text: &str, path: &Path) -> anyhow::Result<Vec<NamedPoint>> {
+///
+/// # Errors
+/// One line naming the file, the line and the column at fault.
+pub fn parse_points(text: &str, path: &Path) -> anyhow::Result<Vec<NamedPoint>> {
     let file = path.display();
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut lines = text
@@ -221,18 +228,21 @@ fn parse_points(text: &str, path: &Path) -> anyhow::Result<Vec<NamedPoint>> {
             "y_m" => &mut y_col,
             "name" => &mut name_col,
             _ => {
-                unknown.push(format!("{column:?}"));
+                unknown.push(format!("{:?}", excerpt(column, 40)));
                 continue;
             }
         };
         if slot.replace(k).is_some() {
-            bail!("{file}: line {header_line}: column {column} appears twice");
+            bail!(
+                "{file}: line {header_line}: column {} appears twice",
+                excerpt(column, 40)
+            );
         }
     }
     if !unknown.is_empty() {
         bail!(
             "{file}: line {header_line}: unknown column(s) {}; expected a header row naming x_m, y_m and optionally name",
-            unknown.join(", ")
+            excerpt(&unknown.join(", "), MAX_EXCERPT_CHARS)
         );
     }
     let (Some(x_col), Some(y_col)) = (x_col, y_col) else {
@@ -255,10 +265,11 @@ fn parse_points(text: &str, path: &Path) -> anyhow::Result<Vec<NamedPoint>> {
         let number = |col: usize| -> anyhow::Result<f64> {
             let raw = &fields[col];
             match raw.parse::<f64>() {
-                Ok(v) if v.is_finite() => Ok(v),
+                Ok(v) if v.is_finite() && v.abs() <= MAX_COORDINATE_M => Ok(v),
                 _ => bail!(
-                    "{file}: line {line}, column {}: expected a finite number of metres, got {raw:?}",
-                    header[col]
+                    "{file}: line {line}, column {}: expected a finite number of metres within ±{MAX_COORDINATE_M}, got {:?}",
+                    header[col],
+                    excerpt(&readable_value(raw), 40)
                 ),
             }
         };
@@ -346,7 +357,7 @@ mod tests {
         let msg = |t: &str| parse(t).expect_err("invalid").to_string();
         assert_eq!(
             msg("name,x_m,y_m\na,1,2\nb,1,abc\n"),
-            "points.csv: line 3, column y_m: expected a finite number of metres, got \"abc\""
+            "points.csv: line 3, column y_m: expected a finite number of metres within ±11000000, got \"abc\""
         );
         assert!(msg("x_m,y_m\nNaN,1\n").contains("line 2, column x_m"));
         assert!(msg("x_m,y_m,z_m,foo\n").contains("line 1: unknown column(s) \"z_m\", \"foo\""));

@@ -8,6 +8,8 @@
 //!
 //! - [`regress`]: runs every scenario's `[[expect]]` entries; text and JUnit reports.
 //! - [`report`]: JSON, per-sol CSV, GeoJSON outputs and terminal tables.
+//! - [`output_set`]: output directories replaced whole ([`output_set::OutputSet`]), never a
+//!   mix of two runs.
 #![warn(missing_docs)]
 
 pub mod cmd_localize;
@@ -16,5 +18,6 @@ pub mod cmd_map;
 pub mod cmd_package;
 pub mod cmd_plan;
 pub mod cmd_zones;
+pub mod output_set;
 pub mod regress;
 pub mod report;

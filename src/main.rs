@@ -10,7 +10,9 @@ use std::process::ExitCode;
 use anyhow::Context as _;
 use clap::{Args, Parser, Subcommand};
 
+use maps::MemoryBudget;
 use sim::{CampaignOutcome, Strategy};
+use solsim::output_set::OutputSet;
 use solsim::report;
 use solsim::{cmd_localize, cmd_localize_rasters, cmd_map, cmd_package, cmd_zones, regress};
 use study::Scenario;
@@ -28,6 +30,13 @@ use study::Scenario;
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// Memory the command may use for maps, rasters and the planning grid, MiB. Sizes are
+    /// computed from the inputs (raster headers, map extent ÷ grid.resolution_m, recipe sizes)
+    /// and checked before anything is allocated; over it, the command stops with an error
+    /// naming the field.
+    #[arg(long, global = true, value_name = "MIB", default_value_t = MemoryBudget::DEFAULT_BYTES >> 20,
+          value_parser = clap::value_parser!(u64).range(1..=(1 << 30)))]
+    memory_budget_mib: u64,
 }
 
 #[derive(Subcommand)]
@@ -104,7 +113,8 @@ struct OutputArgs {
     /// Print JSON on standard output instead of the table.
     #[arg(long)]
     json: bool,
-    /// Directory for the JSON, per-sol CSV and GeoJSON files [default: solsim-out/<scenario name>]
+    /// Directory for the JSON, per-sol CSV and GeoJSON files, replaced whole by each run (it
+    /// must be new, empty, or an earlier solsim output) [default: solsim-out/<scenario name>]
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
     /// Do not write output files.
@@ -184,9 +194,10 @@ fn one_line(e: &anyhow::Error) -> String {
 
 fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
     let stdout = &mut std::io::stdout().lock();
+    let budget = MemoryBudget::new(cli.memory_budget_mib << 20);
     match cli.command {
         Command::Compare(a) => {
-            let scenario = Scenario::load(&a.scenario)?;
+            let scenario = Scenario::load_within(&a.scenario, budget)?;
             let strategies = scenario.strategies();
             let outcomes = scenario.compare(&strategies, scenario.seed());
             let legs = &scenario.legs;
@@ -212,8 +223,8 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
             write_files(&a.output, &scenario, &outcomes, legs, stdout)?;
             Ok(ExitCode::SUCCESS)
         }
-        Command::Run(a) => run_one(&a.scenario, &a.strategy, &a.output, stdout),
-        Command::Replay(a) => run_one(&a.scenario, "replay", &a.output, stdout),
+        Command::Run(a) => run_one(&a.scenario, &a.strategy, &a.output, budget, stdout),
+        Command::Replay(a) => run_one(&a.scenario, "replay", &a.output, budget, stdout),
         Command::Regress(a) => {
             let files = regress::scenario_files(&a.dir)
                 .with_context(|| format!("{}: cannot list scenario files", a.dir.display()))?;
@@ -222,7 +233,7 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
             }
             let mut results = Vec::new();
             for f in &files {
-                results.extend(regress::check_scenario(f)?);
+                results.extend(regress::check_scenario(f, budget)?);
             }
             write!(stdout, "{}", regress::text_report(&results))?;
             if let Some(path) = &a.junit {
@@ -238,7 +249,7 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
             })
         }
         Command::Validate(a) => {
-            let s = Scenario::load(&a.scenario)?;
+            let s = Scenario::load_within(&a.scenario, budget)?;
             let c = &s.campaign;
             let route_m: f64 = c
                 .route
@@ -329,11 +340,11 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
             Ok(ExitCode::SUCCESS)
         }
         Command::Map(MapCommand::Generate(a)) => {
-            cmd_map::generate(&a, stdout)?;
+            cmd_map::generate(&a, budget, stdout)?;
             Ok(ExitCode::SUCCESS)
         }
         Command::Map(MapCommand::Package(a)) => {
-            cmd_package::run(&a, stdout)?;
+            cmd_package::run(&a, budget, stdout)?;
             Ok(ExitCode::SUCCESS)
         }
     }
@@ -343,6 +354,7 @@ fn run_one(
     path: &Path,
     strategy: &str,
     output: &OutputArgs,
+    budget: MemoryBudget,
     stdout: &mut dyn std::io::Write,
 ) -> anyhow::Result<ExitCode> {
     let Some(strategy) = Strategy::from_name(strategy) else {
@@ -352,7 +364,7 @@ fn run_one(
             names.join(", ")
         );
     };
-    let scenario = Scenario::load(path)?;
+    let scenario = Scenario::load_within(path, budget)?;
     if strategy == Strategy::Replay && !scenario.has_history {
         anyhow::bail!(
             "{}: sols[*].historic_distance_m: expected historic distances for a replay, got none",
@@ -394,13 +406,14 @@ fn write_files(
         .out
         .clone()
         .unwrap_or_else(|| Path::new("solsim-out").join(&scenario.name));
+    // The whole set is written aside and swapped into place: a kill leaves the earlier
+    // run's files or these, never a mix.
+    let set = OutputSet::begin(&dir)?;
     let mut written = Vec::new();
     for o in outcomes {
-        written.extend(
-            report::write_run_files(&dir, scenario, o, legs)
-                .with_context(|| format!("{}: cannot write outputs", dir.display()))?,
-        );
+        written.extend(report::write_run_files(&set, scenario, o, legs)?);
     }
+    set.commit()?;
     if !output.json {
         writeln!(
             stdout,

@@ -25,9 +25,12 @@ pub struct CaseResult {
 ///
 /// # Errors
 /// The [`ScenarioError`] of a scenario that cannot be loaded.
-pub fn check_scenario(path: &Path) -> Result<Vec<CaseResult>, ScenarioError> {
+pub fn check_scenario(
+    path: &Path,
+    budget: maps::MemoryBudget,
+) -> Result<Vec<CaseResult>, ScenarioError> {
     let start = std::time::Instant::now();
-    let scenario = Scenario::load(path)?;
+    let scenario = Scenario::load_within(path, budget)?;
     let checked = scenario.check_expectations();
     let seconds = start.elapsed().as_secs_f64();
     Ok(scenario

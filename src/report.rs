@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 
 use serde_json::{Value, json};
 
+use crate::output_set::{OutputSet, OutputSetError};
 use sim::CampaignOutcome;
 use sim::outcome::LegClearance;
 use study::Scenario;
@@ -180,27 +181,26 @@ pub fn run_geojson(scenario: &Scenario, outcome: &CampaignOutcome) -> Value {
 
 /// Write the JSON, CSV and GeoJSON of one run into `dir`; returns the paths written.
 pub fn write_run_files(
-    dir: &Path,
+    set: &OutputSet,
     scenario: &Scenario,
     outcome: &CampaignOutcome,
     legs: &[LegClearance],
-) -> std::io::Result<Vec<PathBuf>> {
+) -> Result<Vec<PathBuf>, OutputSetError> {
     let stem = format!("{}.{}", scenario.name, outcome.strategy);
-    let files = [
+    [
         (
-            dir.join(format!("{stem}.json")),
+            format!("{stem}.json"),
             pretty(&run_json(scenario, outcome, legs)),
         ),
-        (dir.join(format!("{stem}.sols.csv")), sols_csv(outcome)),
+        (format!("{stem}.sols.csv"), sols_csv(outcome)),
         (
-            dir.join(format!("{stem}.geojson")),
+            format!("{stem}.geojson"),
             pretty(&run_geojson(scenario, outcome)),
         ),
-    ];
-    for (path, text) in &files {
-        write_atomic(path, text.as_bytes())?;
-    }
-    Ok(files.into_iter().map(|(p, _)| p).collect())
+    ]
+    .iter()
+    .map(|(name, text)| set.write(name, text.as_bytes()))
+    .collect()
 }
 
 /// Pretty JSON with a trailing newline.

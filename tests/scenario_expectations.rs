@@ -11,7 +11,8 @@ fn check(file: &str) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("scenarios")
         .join(file);
-    let results = regress::check_scenario(&path).unwrap_or_else(|e| panic!("{e}"));
+    let results = regress::check_scenario(&path, maps::MemoryBudget::default())
+        .unwrap_or_else(|e| panic!("{e}"));
     assert!(!results.is_empty(), "{file} has no expectations");
     let failed: Vec<_> = results
         .iter()

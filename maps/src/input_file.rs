@@ -124,6 +124,22 @@ pub fn read_text_file(path: &Path) -> Result<String, InputFileError> {
     })
 }
 
+/// `text` cut to at most `max_chars` characters, with `…` marking the cut: what an error
+/// message quotes of an input (an offending line, a value, a name) stays one readable line.
+#[must_use]
+pub fn excerpt(text: &str, max_chars: usize) -> String {
+    match text.char_indices().nth(max_chars) {
+        None => text.to_string(),
+        Some(_) => {
+            let cut = text
+                .char_indices()
+                .nth(max_chars.saturating_sub(1))
+                .map_or(text.len(), |(i, _)| i);
+            format!("{}…", &text[..cut])
+        }
+    }
+}
+
 /// A byte count for people: `512 B`, `16 MiB`, `6.4 GiB`.
 #[must_use]
 pub fn human_bytes(bytes: u64) -> String {

@@ -6,6 +6,8 @@
 //! - [`raster_io`]: PNG and GeoTIFF readers and writers (appearance u8, DEM as 16-bit cm or f32 m,
 //!   terrain class u8) and [`MapLayers`], the three layers of one map.
 //! - [`input_file`]: reading inputs safely (regular files only, a size cap).
+//! - [`memory_budget`]: one memory budget per command ([`MemoryBudget`]), checked from sizes
+//!   and raster headers before allocating.
 //! - [`package`]: onboard map packages: the maps masked to a corridor around the route, PNG.
 //! - [`procedural`]: the seeded terrain generator the bundled scenario maps come from.
 //! - [`zone`]: keep-in / keep-out zones ([`ZoneSet`]) read from GeoJSON, with exact distance
@@ -25,6 +27,7 @@
 #![warn(missing_docs)]
 
 pub mod input_file;
+pub mod memory_budget;
 pub mod package;
 pub mod procedural;
 pub mod raster;
@@ -32,6 +35,7 @@ pub mod raster_io;
 pub mod terrain;
 pub mod zone;
 
+pub use memory_budget::MemoryBudget;
 pub use raster::{GeoTransform, Raster};
 pub use raster_io::{MapLayers, RasterError};
 pub use terrain::TerrainClass;

@@ -15,6 +15,7 @@
 
 mod error;
 mod geotiff;
+mod header;
 mod map_layers;
 mod nodata;
 mod png;
@@ -28,6 +29,7 @@ use crate::raster::{GeoTransform, Raster};
 
 pub use error::{DEM_CM_MAX_M, RasterError};
 pub use geotiff::{GeoTiff, read_geotiff, write_geotiff};
+pub use header::{RasterHeader, read_header};
 pub use map_layers::MapLayers;
 pub use nodata::{read_dem_with_holes, read_raster_with_nodata};
 pub use png::{encode_png, read_png, write_png};
@@ -140,6 +142,23 @@ impl Format {
                 found: ext_of(path),
             }),
         }
+    }
+}
+
+/// Refuses a FIFO, a device or a directory before it is opened (a named pipe would block the
+/// reader); a missing or unreadable file is an [`RasterError::Io`].
+fn check_regular_file(path: &Path) -> Result<(), RasterError> {
+    use crate::input_file::InputFileError;
+    match crate::input_file::regular_file_len(path) {
+        Ok(_) => Ok(()),
+        Err(InputFileError::Io { error }) => Err(RasterError::Io {
+            path: path.to_path_buf(),
+            source: error,
+        }),
+        Err(error) => Err(RasterError::NotAFile {
+            path: path.to_path_buf(),
+            error,
+        }),
     }
 }
 

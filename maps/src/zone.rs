@@ -177,6 +177,11 @@ pub struct ZoneSet {
     keep_in_edges: SegmentTree,
 }
 
+/// Largest map-metre coordinate accepted anywhere (zone vertices, waypoints, origins), metres:
+/// half the equatorial circumference of Mars is 10 660 km, so a larger coordinate is off the
+/// planet, and at 1e20 the distance queries would lose every digit of a metre.
+pub const MAX_COORDINATE_M: f64 = 11_000_000.0;
+
 impl ZoneSet {
     /// Read and validate a zones GeoJSON file (see the [module docs](self) for the format).
     ///

@@ -8,8 +8,7 @@
 
 use std::sync::Arc;
 
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
+use crate::seeds::{Purpose, stream_seed};
 
 use crate::astar::AStar;
 use crate::autonav::{DriveContext, DriveLimits, RoverParams, RoverState, VoSource};
@@ -108,8 +107,7 @@ pub fn leg_clearances(c: &Campaign) -> Vec<LegClearance> {
 #[must_use]
 pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> CampaignOutcome {
     let cal = &c.calendar;
-    let mut rng = ChaCha8Rng::seed_from_u64(c.seed);
-    rng.set_stream(strategy.stream_id());
+    let mut rng = stream_seed(c.seed, Purpose::Strategy(strategy), 0).rng();
     let mut astar = AStar::new(c.grid.width, c.grid.height);
     let ctx = DriveContext {
         grid: &c.grid,

@@ -19,6 +19,7 @@
 //! - [`science`]: campaign intents that outlive a sol (goal-set targets on the map, periodic,
 //!   state-based) and the candidates they offer each sol.
 //! - [`campaign`]: the multi-sol runner; [`outcome`]: what it reports.
+//! - [`seeds`]: the one derivation of every random stream from (scenario seed, purpose, run).
 //!
 //! ```
 //! use sim::uncertainty::{UncertaintyModel, UncertaintyState};
@@ -43,6 +44,7 @@ pub mod outcome;
 pub mod planning_grid;
 pub mod pose;
 pub mod science;
+pub mod seeds;
 pub mod sol_plan;
 mod sol_run;
 pub mod strategy;

@@ -12,6 +12,7 @@
 //! | a target observation | as planned | — (out of reach: logged as failed) |
 //! | a new target revealed | — | added to the plan at the first step boundary after its reveal |
 
+use crate::seeds::{Purpose, stream_seed};
 use rand_chacha::ChaCha8Rng;
 
 use crate::astar::AStar;
@@ -104,8 +105,8 @@ fn imagery_localization(
         prior_m: [estimate.x, estimate.y],
         uncertainty_m: state.uncertainty.radius_m(&c.model),
         // One world and one orbital map per scenario; the imaging and upsets change each sol.
-        truth_seed: maps::procedural::noise::sub_seed(c.seed, 0x7275_7468),
-        orbital_seed: maps::procedural::noise::sub_seed(c.seed, 0x6f72_6269),
+        truth_seed: stream_seed(c.seed, Purpose::WorldTruth, 0).seed,
+        orbital_seed: stream_seed(c.seed, Purpose::WorldOrbital, 0).seed,
         sol_seed,
     };
     let run = run_onboard(&loc.layers, &request, &loc.settings);

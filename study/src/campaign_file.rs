@@ -67,6 +67,20 @@ impl CampaignFile {
     /// A [`PlanFileError`] naming the file and the first field at fault.
     pub fn load(path: &Path) -> Result<Self, PlanFileError> {
         let (raw, sha256) = crate::input::read_toml::<RawCampaignFile>(path)?;
+        Self::checked(path, raw, sha256)
+    }
+
+    /// [`CampaignFile::load`] of campaign-file text (`path` names it in errors; nothing is
+    /// read): what the fuzzer drives.
+    ///
+    /// # Errors
+    /// As [`CampaignFile::load`].
+    pub fn from_toml_str(path: &Path, text: &str) -> Result<Self, PlanFileError> {
+        let raw = crate::input::parse_toml::<RawCampaignFile>(path, text)?;
+        Self::checked(path, raw, crate::input::sha256_hex(text.as_bytes()))
+    }
+
+    fn checked(path: &Path, raw: RawCampaignFile, sha256: String) -> Result<Self, PlanFileError> {
         let file = Self::resolve(path, raw, sha256)?;
         // The planner's own checks, mapped back to the TOML path of the activity at fault.
         planner::Instance::new(&file.problem).map_err(|e| file.planner_error(e))?;

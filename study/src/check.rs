@@ -40,13 +40,6 @@ impl Check<'_> {
             Err(self.err(field, format!("a non-negative number of {unit}"), v))
         }
     }
-    pub(crate) fn finite(&self, field: &str, v: f64) -> Result<f64, ScenarioError> {
-        if v.is_finite() {
-            Ok(v)
-        } else {
-            Err(self.err(field, "a finite number", v))
-        }
-    }
     /// A value in `lo ..= hi` `unit` (a physical range: the loaders refuse absurd values that
     /// are finite but would run to nonsense).
     pub(crate) fn in_range(
@@ -61,6 +54,24 @@ impl Check<'_> {
             Ok(v)
         } else {
             Err(self.err(field, format!("{lo} ..= {hi} {unit}"), v))
+        }
+    }
+    /// A value in `(0, hi]` `unit`.
+    pub(crate) fn positive_at_most(
+        &self,
+        field: &str,
+        v: f64,
+        hi: f64,
+        unit: &str,
+    ) -> Result<f64, ScenarioError> {
+        if v.is_finite() && v > 0.0 && v <= hi {
+            Ok(v)
+        } else {
+            Err(self.err(
+                field,
+                format!("a positive number of {unit}, at most {hi}"),
+                v,
+            ))
         }
     }
     pub(crate) fn fraction(&self, field: &str, v: f64) -> Result<f64, ScenarioError> {

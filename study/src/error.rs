@@ -90,11 +90,13 @@ impl ScenarioError {
             MAX_EXCERPT_CHARS,
         );
         let message = excerpt(
-            err.message()
-                .lines()
-                .next()
-                .unwrap_or("invalid TOML")
-                .trim(),
+            &readable_numbers(
+                err.message()
+                    .lines()
+                    .next()
+                    .unwrap_or("invalid TOML")
+                    .trim(),
+            ),
             MAX_EXCERPT_CHARS,
         );
         ScenarioError::Syntax {
@@ -109,20 +111,9 @@ impl ScenarioError {
 
 /// Longest excerpt of a file (an offending line, a value, a field) quoted in a message,
 /// characters: a message stays one readable line whatever the input holds.
-pub const MAX_EXCERPT_CHARS: usize = 80;
+pub const MAX_EXCERPT_CHARS: usize = 120;
 
-/// `text` cut to at most `max_chars` characters, with `…` marking the cut.
-#[must_use]
-pub fn excerpt(text: &str, max_chars: usize) -> String {
-    match text.char_indices().nth(max_chars) {
-        None => text.to_string(),
-        Some((end, _)) => {
-            let keep = text[..end].char_indices().nth(max_chars.saturating_sub(1));
-            let cut = keep.map_or(end, |(i, _)| i);
-            format!("{}…", &text[..cut])
-        }
-    }
-}
+pub use maps::input_file::excerpt;
 
 /// A number as a person reads it: `1e300` rather than 301 digits, `1.5e-9` rather than a run
 /// of zeros; anything that is not a plain number is returned unchanged.
@@ -140,6 +131,30 @@ pub fn readable_value(text: &str) -> String {
     }
 }
 
+/// `text` with every run of more than 15 digits (a number no one reads: `1e300` spelled out
+/// by a parser) rewritten as `1e300`.
+#[must_use]
+pub fn readable_numbers(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(start) = rest.find(|c: char| c.is_ascii_digit()) {
+        out.push_str(&rest[..start]);
+        let run = &rest[start..];
+        let end = run
+            .find(|c: char| !(c.is_ascii_digit() || c == '.'))
+            .unwrap_or(run.len());
+        let number = &run[..end];
+        let digits = number.chars().filter(char::is_ascii_digit).count();
+        match number.parse::<f64>() {
+            Ok(v) if digits > 15 => out.push_str(&format!("{v:e}")),
+            _ => out.push_str(number),
+        }
+        rest = &run[end..];
+    }
+    out.push_str(rest);
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -151,6 +166,16 @@ mod tests {
         let e = excerpt(&long, 80);
         assert_eq!(e.chars().count(), 80);
         assert!(e.ends_with('…'));
+    }
+
+    #[test]
+    fn long_digit_runs_are_shortened() {
+        let spelled = format!("floating point `{}`, expected u64", 1e300_f64);
+        assert_eq!(
+            readable_numbers(&spelled),
+            "floating point `1e300`, expected u64"
+        );
+        assert_eq!(readable_numbers("line 12, column 3"), "line 12, column 3");
     }
 
     #[test]

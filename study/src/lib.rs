@@ -20,7 +20,7 @@
 //! let scenario = Scenario::load("scenarios/sol383-386.toml".as_ref())?;
 //! for seed in 0..10 {
 //!     let outcome = scenario.run(Strategy::Onboard, seed);
-//!     println!("seed {seed}: {} NO_PATH faults", outcome.no_path_faults());
+//!     println!("seed {seed}: {} NO_PATH faults", outcome.totals.no_path_faults);
 //! }
 //! # Ok::<(), study::ScenarioError>(())
 //! ```

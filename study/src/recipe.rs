@@ -2,13 +2,19 @@
 //! [`maps::procedural::TerrainParams`] (seed, size, georeference, craters, ridges, dune fields,
 //! sand patches, sun) and an optional `dem_datum_m`. `solsim map generate` turns one into the
 //! appearance, DEM and terrain-class GeoTIFFs.
+//!
+//! Every field has a physical range (below), and the map's size is held to the command's
+//! [`MemoryBudget`] before anything is generated.
 
 use std::path::Path;
 
 use serde::Deserialize;
 
+use crate::check::Check;
 use crate::error::ScenarioError;
+use maps::MemoryBudget;
 use maps::procedural::TerrainParams;
+use maps::zone::MAX_COORDINATE_M;
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -19,84 +25,192 @@ struct RawRecipe {
 }
 
 /// Largest map side accepted, pixels.
-const MAX_SIDE_PX: usize = 20_000;
+pub const MAX_SIDE_PX: usize = 20_000;
+/// Memory the generator holds per map pixel, bytes: measured (peak RSS of `solsim map
+/// generate` at 1000² and 2000² px: 22 B per extra pixel) and rounded up.
+pub const BYTES_PER_PX: u64 = 24;
+/// Most craters, ridges, dune fields or sand patches one map may ask for (the generator's
+/// time grows with each).
+pub const MAX_FEATURES: f64 = 1.0e6;
+/// Heights, reliefs and datums, metres: Mars spans about −8 km to +22 km.
+const MAX_HEIGHT_M: f64 = 100_000.0;
+/// Map pixel size, metres.
+const MAX_RESOLUTION_M: f64 = 1_000.0;
 
-/// Read and validate a recipe.
-pub fn load_recipe(path: &Path) -> Result<(TerrainParams, f64), ScenarioError> {
+/// Read and validate a recipe within `budget`: the terrain and its datum.
+///
+/// # Errors
+/// A [`ScenarioError`] naming the file and the first `terrain.…` field at fault.
+pub fn load_recipe(
+    path: &Path,
+    budget: MemoryBudget,
+) -> Result<(TerrainParams, f64), ScenarioError> {
     let (recipe, _sha256) = crate::input::read_toml::<RawRecipe>(path)?;
+    validate(path, recipe, budget)
+}
+
+/// [`load_recipe`] of recipe text (`path` names it in errors; nothing is read).
+///
+/// # Errors
+/// As [`load_recipe`].
+pub fn recipe_from_toml_str(
+    path: &Path,
+    text: &str,
+    budget: MemoryBudget,
+) -> Result<(TerrainParams, f64), ScenarioError> {
+    validate(path, crate::input::parse_toml(path, text)?, budget)
+}
+
+fn validate(
+    path: &Path,
+    recipe: RawRecipe,
+    budget: MemoryBudget,
+) -> Result<(TerrainParams, f64), ScenarioError> {
+    let c = Check { path };
     let t = &recipe.terrain;
-    let bad = |field: &str, expected: &str, got: String| {
-        Err(ScenarioError::field(
-            path,
-            format!("terrain.{field}"),
-            expected,
-            got,
-        ))
-    };
-    if t.width_px == 0 || t.width_px > MAX_SIDE_PX {
-        return bad(
-            "width_px",
-            &format!("1 ..= {MAX_SIDE_PX} pixels"),
-            t.width_px.to_string(),
-        );
-    }
-    if t.height_px == 0 || t.height_px > MAX_SIDE_PX {
-        return bad(
-            "height_px",
-            &format!("1 ..= {MAX_SIDE_PX} pixels"),
-            t.height_px.to_string(),
-        );
-    }
-    if !(t.geo.resolution_m_per_px.is_finite() && t.geo.resolution_m_per_px > 0.0) {
-        return bad(
-            "geo.resolution_m_per_px",
-            "a positive number of metres per pixel",
-            t.geo.resolution_m_per_px.to_string(),
-        );
-    }
-    let reals = [
-        ("geo.origin_m[0]", t.geo.origin_m[0]),
-        ("geo.origin_m[1]", t.geo.origin_m[1]),
-        ("base_height_m", t.base_height_m),
-        ("relief_m", t.relief_m),
-        ("crater_density_per_km2", t.crater_density_per_km2),
-        ("crater_radius_min_m", t.crater_radius_min_m),
-        ("crater_radius_max_m", t.crater_radius_max_m),
-        ("ridge_height_m", t.ridge_height_m),
-        ("sand_fraction", t.sand_fraction),
-        ("bedrock_fraction", t.bedrock_fraction),
-        ("sun_azimuth_deg", t.sun_azimuth_deg),
-        ("sun_elevation_deg", t.sun_elevation_deg),
-    ];
-    for (field, v) in reals {
-        if !v.is_finite() {
-            return bad(field, "a finite number", v.to_string());
+    for (field, v) in [
+        ("terrain.width_px", t.width_px),
+        ("terrain.height_px", t.height_px),
+    ] {
+        if v == 0 || v > MAX_SIDE_PX {
+            return Err(c.err(field, format!("1 ..= {MAX_SIDE_PX} pixels"), v));
         }
     }
-    for (i, f) in t.dune_fields.iter().enumerate() {
-        let vals = [
-            f.center_m[0],
-            f.center_m[1],
-            f.radius_m,
-            f.wavelength_m,
-            f.amplitude_m,
-            f.crest_azimuth_deg,
-        ];
-        if vals.iter().any(|v| !v.is_finite()) || f.radius_m < 0.0 || f.wavelength_m <= 0.0 {
-            return bad(
-                &format!("dune_fields[{i}]"),
-                "finite values, radius_m ≥ 0 and wavelength_m > 0",
-                format!("{f:?}"),
-            );
-        }
-    }
-    if !recipe.dem_datum_m.is_finite() {
-        return Err(ScenarioError::field(
-            path,
-            "dem_datum_m",
-            "a finite number of metres",
-            recipe.dem_datum_m,
+    let need_bytes =
+        maps::memory_budget::bytes_of(&[t.width_px as u64, t.height_px as u64, BYTES_PER_PX]);
+    if !budget.allows(need_bytes) {
+        return Err(c.err(
+            "terrain.width_px",
+            format!(
+                "a map whose generation fits the memory budget ({}; --memory-budget-mib)",
+                maps::input_file::human_bytes(budget.limit_bytes)
+            ),
+            format!(
+                "{} × {} px, which needs {}",
+                t.width_px,
+                t.height_px,
+                maps::input_file::human_bytes(need_bytes)
+            ),
         ));
+    }
+    let res = c.positive_at_most(
+        "terrain.geo.resolution_m_per_px",
+        t.geo.resolution_m_per_px,
+        MAX_RESOLUTION_M,
+        "metres per pixel",
+    )?;
+    let coordinate = |field: &str, v: f64| {
+        c.in_range(field, v, -MAX_COORDINATE_M, MAX_COORDINATE_M, "map metres")
+    };
+    coordinate("terrain.geo.origin_m[0]", t.geo.origin_m[0])?;
+    coordinate("terrain.geo.origin_m[1]", t.geo.origin_m[1])?;
+    let height = |field: &str, v: f64| c.in_range(field, v, -MAX_HEIGHT_M, MAX_HEIGHT_M, "metres");
+    height("terrain.base_height_m", t.base_height_m)?;
+    height("dem_datum_m", recipe.dem_datum_m)?;
+    c.in_range("terrain.relief_m", t.relief_m, 0.0, MAX_HEIGHT_M, "metres")?;
+    c.in_range(
+        "terrain.ridge_height_m",
+        t.ridge_height_m,
+        0.0,
+        MAX_HEIGHT_M,
+        "metres",
+    )?;
+    let area_km2 = t.width_px as f64 * t.height_px as f64 * res * res / 1e6;
+    let density = c.in_range(
+        "terrain.crater_density_per_km2",
+        t.crater_density_per_km2,
+        0.0,
+        1e6,
+        "craters per km²",
+    )?;
+    if density * area_km2 > MAX_FEATURES {
+        return Err(c.err(
+            "terrain.crater_density_per_km2",
+            format!("at most {MAX_FEATURES:e} craters over the map ({area_km2:.1} km²)"),
+            density,
+        ));
+    }
+    let r_min = c.in_range(
+        "terrain.crater_radius_min_m",
+        t.crater_radius_min_m,
+        0.0,
+        MAX_HEIGHT_M,
+        "metres",
+    )?;
+    c.in_range(
+        "terrain.crater_radius_max_m",
+        t.crater_radius_max_m,
+        r_min,
+        MAX_HEIGHT_M,
+        "metres (at least crater_radius_min_m)",
+    )?;
+    for (field, n) in [
+        ("terrain.ridge_count", t.ridge_count),
+        ("terrain.dune_fields", t.dune_fields.len()),
+        ("terrain.sand_patches", t.sand_patches.len()),
+    ] {
+        if n as f64 > MAX_FEATURES {
+            return Err(c.err(field, format!("at most {MAX_FEATURES:e} entries"), n));
+        }
+    }
+    c.fraction("terrain.sand_fraction", t.sand_fraction)?;
+    c.fraction("terrain.bedrock_fraction", t.bedrock_fraction)?;
+    c.in_range(
+        "terrain.sun_azimuth_deg",
+        t.sun_azimuth_deg,
+        -360.0,
+        360.0,
+        "degrees",
+    )?;
+    c.in_range(
+        "terrain.sun_elevation_deg",
+        t.sun_elevation_deg,
+        0.0,
+        90.0,
+        "degrees",
+    )?;
+    for (i, f) in t.dune_fields.iter().enumerate() {
+        let field = |name: &str| format!("terrain.dune_fields[{i}].{name}");
+        coordinate(&field("center_m[0]"), f.center_m[0])?;
+        coordinate(&field("center_m[1]"), f.center_m[1])?;
+        c.in_range(
+            &field("radius_m"),
+            f.radius_m,
+            0.0,
+            MAX_COORDINATE_M,
+            "metres",
+        )?;
+        c.positive_at_most(
+            &field("wavelength_m"),
+            f.wavelength_m,
+            MAX_HEIGHT_M,
+            "metres",
+        )?;
+        c.in_range(
+            &field("amplitude_m"),
+            f.amplitude_m,
+            0.0,
+            MAX_HEIGHT_M,
+            "metres",
+        )?;
+        c.in_range(
+            &field("crest_azimuth_deg"),
+            f.crest_azimuth_deg,
+            -360.0,
+            360.0,
+            "degrees",
+        )?;
+    }
+    for (i, (center, radius)) in t.sand_patches.iter().enumerate() {
+        coordinate(&format!("terrain.sand_patches[{i}][0][0]"), center[0])?;
+        coordinate(&format!("terrain.sand_patches[{i}][0][1]"), center[1])?;
+        c.in_range(
+            &format!("terrain.sand_patches[{i}][1]"),
+            *radius,
+            0.0,
+            MAX_COORDINATE_M,
+            "metres",
+        )?;
     }
     Ok((recipe.terrain, recipe.dem_datum_m))
 }

@@ -18,7 +18,7 @@ mod raw;
 use crate::expect::{Expectation, Mismatch};
 use localization::matcher::Method;
 use localization::onboard::OnboardSettings;
-use maps::{GeoTransform, MapLayers, ZoneSet};
+use maps::{GeoTransform, MapLayers, MemoryBudget, ZoneSet};
 use raw::RawPerTerrain;
 pub use raw::RawScenario;
 use sim::autonav::{PerTerrain, RoverParams};
@@ -27,6 +27,7 @@ use sim::campaign::{self, Campaign};
 use sim::localizer::{ImageryLocalizer, OnboardLocalizer, StatisticalLocalizer};
 use sim::outcome::LegClearance;
 use sim::planning_grid::{GridParams, PlanningGrid};
+use sim::time::SOL_S;
 use sim::uncertainty::UncertaintyModel;
 use sim::{CampaignOutcome, Strategy};
 
@@ -36,6 +37,117 @@ const DEFAULT_DRIVE_START: &str = "11:00";
 const DEFAULT_DRIVE_END: &str = "15:00";
 const DEFAULT_POST_DRIVE_IMAGING_S: u32 = 1800;
 const DEFAULT_MAX_EXTENSION_SOLS: u32 = 3;
+
+// Physical ranges: a finite value outside them would run to nonsense, so the loader refuses
+// it. Each is generous against the rover it bounds (README, "Scenario files", lists them).
+/// AutoNav rate, m/h: Perseverance drives on the order of 100-200 m/h.
+const MAX_DRIVE_RATE_M_PER_H: f64 = 2_000.0;
+/// AutoNav step, m.
+const MAX_STEP_M: f64 = 50.0;
+/// Waypoint tolerance, m.
+const MAX_TOLERANCE_M: f64 = 100.0;
+/// Heading knowledge error (1σ), degrees.
+const MAX_HEADING_SIGMA_DEG: f64 = 45.0;
+/// Margins, uncertainties and localization errors, m: beyond 1 km no passage survives.
+const MAX_MARGIN_M: f64 = 1_000.0;
+/// Rover footprint radius, m.
+const MAX_FOOTPRINT_RADIUS_M: f64 = 10.0;
+/// Planning-grid cell, m (finer grids are held to the memory budget too).
+const MIN_GRID_RESOLUTION_M: f64 = 0.01;
+/// Planning-grid cell, m: coarser cells cannot represent a passage.
+const MAX_GRID_RESOLUTION_M: f64 = 50.0;
+/// Image-matching localizer run-time multiplier on the co-processor.
+const MAX_HBS_SLOWDOWN: f64 = 1_000.0;
+/// Terrain cost multiplier.
+const MAX_TERRAIN_COST: f64 = 1_000.0;
+/// One sol's historic drive, m: the longest Mars drives are well under 1 km per sol.
+const MAX_SOL_DRIVE_M: f64 = 10_000.0;
+/// Scenario name, characters (it names output files).
+const MAX_NAME_CHARS: usize = 100;
+/// Sols in one scenario (about 15 Mars years).
+const MAX_SOLS: usize = 10_000;
+/// Map-metre coordinates: half the equatorial circumference of Mars is 10 660 km, so a larger
+/// coordinate is not on the planet (and would cost f64 precision in the distance queries).
+const MAX_COORDINATE_M: f64 = maps::zone::MAX_COORDINATE_M;
+/// Map pixel size, m.
+const MAX_MAP_RESOLUTION_M: f64 = 1_000.0;
+/// DEM datum, m: Mars spans about −8 km to +22 km.
+const MAX_DATUM_M: f64 = 100_000.0;
+
+/// A scenario file, validated, before its maps are read: stage one of [`Scenario::load`].
+#[derive(Debug)]
+pub struct ScenarioSpec {
+    /// The file it came from.
+    pub path: PathBuf,
+    /// Short name (used for output file names).
+    pub name: String,
+    /// One-paragraph description.
+    pub description: String,
+    /// SHA-256 of the scenario file's bytes, hex.
+    pub sha256: String,
+    /// Master seed.
+    pub seed: u64,
+    /// The map files, resolved against the scenario's folder.
+    pub map: MapFiles,
+    /// Planning-grid settings.
+    pub grid: GridParams,
+    /// Route waypoints, map metres (on the map: checked by [`Scenario::build`]).
+    pub route: Vec<[f64; 2]>,
+    /// Operations calendar.
+    pub calendar: Calendar,
+    /// Rover and AutoNav settings.
+    pub rover: RoverParams,
+    /// Uncertainty growth.
+    pub model: UncertaintyModel,
+    /// Which onboard localizer.
+    pub localizer: LocalizerSpec,
+    /// Operator margin after an onboard localization, metres.
+    pub operator_margin_m: f64,
+    /// Post-drive imaging before a downlink pass, seconds.
+    pub post_drive_imaging_s: u32,
+    /// Extension sols without a localization before extension drives stop.
+    pub max_extension_sols: u32,
+    /// Science campaigns (target positions on the map: checked by [`Scenario::build`]).
+    pub science: sim::science::Science,
+    /// Expected outcomes.
+    pub expectations: Vec<Expectation>,
+    /// Per-sol notes.
+    pub notes: Vec<(u32, String)>,
+    /// Whether any sol has historic data.
+    pub has_history: bool,
+}
+
+/// The `[map]` section: files resolved against the scenario's folder.
+#[derive(Clone, Debug)]
+pub struct MapFiles {
+    /// Orthoimage (u8), PNG or GeoTIFF.
+    pub appearance: PathBuf,
+    /// DEM: 16-bit centimetres above `dem_datum_m`, or f32 metres.
+    pub dem: PathBuf,
+    /// Terrain classes (u8).
+    pub terrain: PathBuf,
+    /// Keep-in / keep-out zones, GeoJSON.
+    pub zones: PathBuf,
+    /// Datum of a 16-bit centimetre DEM, metres.
+    pub dem_datum_m: f64,
+    /// Placement of PNG layers (GeoTIFFs carry their own).
+    pub georef: Option<GeoTransform>,
+}
+
+/// The `[onboard_localization]` choice, before the maps an image-matching localizer needs
+/// are read.
+#[derive(Clone, Debug)]
+pub enum LocalizerSpec {
+    /// Errors drawn from the published statistics.
+    Statistical(StatisticalLocalizer),
+    /// Image matching on the co-processor model.
+    Imagery {
+        /// Census, NCC or MI.
+        method: Method,
+        /// Run-time multiplier on the co-processor.
+        hbs_slowdown: f64,
+    },
+}
 
 /// A validated scenario, ready to run.
 #[derive(Debug)]
@@ -77,8 +189,13 @@ fn per_terrain(
         match v {
             None => Ok(d),
             Some(v) if frac => c.fraction(&f, v),
-            Some(v) if v.is_finite() && v >= 1.0 => Ok(v),
-            Some(v) => Err(ScenarioError::field(c.path, f, "a cost multiplier ≥ 1", v)),
+            Some(v) if v.is_finite() && (1.0..=MAX_TERRAIN_COST).contains(&v) => Ok(v),
+            Some(v) => Err(ScenarioError::field(
+                c.path,
+                f,
+                format!("a cost multiplier 1 ..= {MAX_TERRAIN_COST}"),
+                v,
+            )),
         }
     };
     Ok(PerTerrain {
@@ -88,21 +205,42 @@ fn per_terrain(
     })
 }
 
-impl Scenario {
-    /// Read, validate and resolve a scenario file (maps and zones included).
+impl ScenarioSpec {
+    /// Reads and validates a scenario file without reading its maps (stage one of
+    /// [`Scenario::load`]).
+    ///
+    /// # Errors
+    /// A [`ScenarioError`] naming the file and the first field at fault.
     pub fn load(path: &Path) -> Result<Self, ScenarioError> {
         let (raw, sha256) = crate::input::read_toml::<RawScenario>(path)?;
-        Self::resolve(path, raw, sha256)
+        Self::validate(path, raw, sha256)
     }
 
-    fn resolve(path: &Path, raw: RawScenario, sha256: String) -> Result<Self, ScenarioError> {
+    /// [`ScenarioSpec::load`] of scenario text (`path` names it in errors and anchors its
+    /// relative paths; nothing is read): what the fuzzer drives.
+    ///
+    /// # Errors
+    /// A [`ScenarioError`] naming the file and the first field at fault.
+    pub fn from_toml_str(path: &Path, text: &str) -> Result<Self, ScenarioError> {
+        let raw = crate::input::parse_toml::<RawScenario>(path, text)?;
+        Self::validate(path, raw, crate::input::sha256_hex(text.as_bytes()))
+    }
+
+    fn validate(path: &Path, raw: RawScenario, sha256: String) -> Result<Self, ScenarioError> {
         let c = Check { path };
         let base = path.parent().unwrap_or(Path::new("."));
-        if raw.name.trim().is_empty() || raw.name.contains(['/', '\\']) {
+        // The name becomes output file and directory names.
+        if raw.name.trim().is_empty()
+            || raw.name.chars().count() > MAX_NAME_CHARS
+            || raw.name.contains(['/', '\\'])
+            || raw.name.chars().any(char::is_control)
+        {
             return Err(ScenarioError::field(
                 path,
                 "name",
-                "a non-empty name without path separators",
+                format!(
+                    "a name of 1 ..= {MAX_NAME_CHARS} characters without path separators or control characters"
+                ),
                 format!("{:?}", raw.name),
             ));
         }
@@ -112,15 +250,20 @@ impl Scenario {
         let r = raw.rover;
         let rover = RoverParams {
             drive_rate_m_per_h: r.drive_rate_m_per_h.map_or(Ok(d.drive_rate_m_per_h), |v| {
-                c.positive("rover.drive_rate_m_per_h", v, "metres per hour")
+                c.positive_at_most(
+                    "rover.drive_rate_m_per_h",
+                    v,
+                    MAX_DRIVE_RATE_M_PER_H,
+                    "metres per hour",
+                )
             })?,
-            step_m: r
-                .step_m
-                .map_or(Ok(d.step_m), |v| c.positive("rover.step_m", v, "metres"))?,
+            step_m: r.step_m.map_or(Ok(d.step_m), |v| {
+                c.positive_at_most("rover.step_m", v, MAX_STEP_M, "metres")
+            })?,
             waypoint_tolerance_m: r
                 .waypoint_tolerance_m
                 .map_or(Ok(d.waypoint_tolerance_m), |v| {
-                    c.positive("rover.waypoint_tolerance_m", v, "metres")
+                    c.positive_at_most("rover.waypoint_tolerance_m", v, MAX_TOLERANCE_M, "metres")
                 })?,
             vo_success: per_terrain(&c, "rover.vo_success", r.vo_success, d.vo_success, true)?,
             slip_fraction: per_terrain(
@@ -141,40 +284,64 @@ impl Scenario {
                 c.fraction("rover.vo_noise_fraction", v)
             })?,
             heading_sigma_deg: r.heading_sigma_deg.map_or(Ok(d.heading_sigma_deg), |v| {
-                c.non_negative("rover.heading_sigma_deg", v, "degrees")
+                c.in_range(
+                    "rover.heading_sigma_deg",
+                    v,
+                    0.0,
+                    MAX_HEADING_SIGMA_DEG,
+                    "degrees",
+                )
             })?,
             edge_buffer_m: r.edge_buffer_m.map_or(Ok(d.edge_buffer_m), |v| {
-                c.non_negative("rover.edge_buffer_m", v, "metres")
+                c.in_range("rover.edge_buffer_m", v, 0.0, MAX_MARGIN_M, "metres")
             })?,
         };
         let gd = GridParams::default();
         let grid_params = GridParams {
             resolution_m: raw.grid.resolution_m.map_or(Ok(gd.resolution_m), |v| {
-                c.positive("grid.resolution_m", v, "metres")
+                c.in_range(
+                    "grid.resolution_m",
+                    v,
+                    MIN_GRID_RESOLUTION_M,
+                    MAX_GRID_RESOLUTION_M,
+                    "metres",
+                )
             })?,
             footprint_radius_m: r
                 .footprint_radius_m
                 .map_or(Ok(gd.footprint_radius_m), |v| {
-                    c.non_negative("rover.footprint_radius_m", v, "metres")
+                    c.in_range(
+                        "rover.footprint_radius_m",
+                        v,
+                        0.0,
+                        MAX_FOOTPRINT_RADIUS_M,
+                        "metres",
+                    )
                 })?,
             max_slope_deg: raw.grid.max_slope_deg.map_or(Ok(gd.max_slope_deg), |v| {
-                c.positive("grid.max_slope_deg", v, "degrees")
+                c.positive_at_most("grid.max_slope_deg", v, 90.0, "degrees")
             })?,
         };
         let ud = UncertaintyModel::default();
         let model = UncertaintyModel {
             k_vo: raw.uncertainty.k_vo.map_or(Ok(ud.k_vo), |v| {
-                c.non_negative("uncertainty.k_vo", v, "metres per metre")
+                c.in_range("uncertainty.k_vo", v, 0.0, 1.0, "metres per metre")
             })?,
             k_novo: raw.uncertainty.k_novo.map_or(Ok(ud.k_novo), |v| {
-                c.non_negative("uncertainty.k_novo", v, "metres per metre")
+                c.in_range("uncertainty.k_novo", v, 0.0, 1.0, "metres per metre")
             })?,
-            initial_margin_m: raw
-                .uncertainty
-                .initial_margin_m
-                .map_or(Ok(ud.initial_margin_m), |v| {
-                    c.non_negative("uncertainty.initial_margin_m", v, "metres")
-                })?,
+            initial_margin_m: raw.uncertainty.initial_margin_m.map_or(
+                Ok(ud.initial_margin_m),
+                |v| {
+                    c.in_range(
+                        "uncertainty.initial_margin_m",
+                        v,
+                        0.0,
+                        MAX_MARGIN_M,
+                        "metres",
+                    )
+                },
+            )?,
         };
         let l = raw.onboard_localization;
         let localizer_name = l.localizer.as_deref().unwrap_or("statistical");
@@ -213,24 +380,45 @@ impl Scenario {
                 "a value with localizer = \"statistical\"",
             ));
         }
-        let hbs_slowdown = l
-            .hbs_slowdown
-            .map_or(Ok(OnboardSettings::default().hbs_slowdown), |v| {
-                c.positive("onboard_localization.hbs_slowdown", v, "seconds per second")
-            })?;
+        let hbs_slowdown =
+            l.hbs_slowdown
+                .map_or(Ok(OnboardSettings::default().hbs_slowdown), |v| {
+                    c.positive_at_most(
+                        "onboard_localization.hbs_slowdown",
+                        v,
+                        MAX_HBS_SLOWDOWN,
+                        "seconds per second",
+                    )
+                })?;
         let ld = StatisticalLocalizer::default();
         let statistical = StatisticalLocalizer {
             mean_error_m: l.mean_error_m.map_or(Ok(ld.mean_error_m), |v| {
-                c.positive("onboard_localization.mean_error_m", v, "metres")
+                c.positive_at_most(
+                    "onboard_localization.mean_error_m",
+                    v,
+                    MAX_MARGIN_M,
+                    "metres",
+                )
             })?,
             p99_error_m: l.p99_error_m.map_or(Ok(ld.p99_error_m), |v| {
-                c.positive("onboard_localization.p99_error_m", v, "metres")
+                c.positive_at_most(
+                    "onboard_localization.p99_error_m",
+                    v,
+                    MAX_MARGIN_M,
+                    "metres",
+                )
             })?,
             failure_rate: l.failure_rate.map_or(Ok(ld.failure_rate), |v| {
                 c.fraction("onboard_localization.failure_rate", v)
             })?,
             reported_sigma_m: l.reported_sigma_m.map_or(Ok(ld.reported_sigma_m), |v| {
-                c.non_negative("onboard_localization.reported_sigma_m", v, "metres")
+                c.in_range(
+                    "onboard_localization.reported_sigma_m",
+                    v,
+                    0.0,
+                    MAX_MARGIN_M,
+                    "metres",
+                )
             })?,
         };
         if statistical.p99_error_m <= statistical.mean_error_m * 1.05 {
@@ -247,7 +435,13 @@ impl Scenario {
         let operator_margin_m = l
             .operator_margin_m
             .map_or(Ok(DEFAULT_OPERATOR_MARGIN_M), |v| {
-                c.non_negative("onboard_localization.operator_margin_m", v, "metres")
+                c.in_range(
+                    "onboard_localization.operator_margin_m",
+                    v,
+                    0.0,
+                    MAX_MARGIN_M,
+                    "metres",
+                )
             })?;
         let ops = raw.operations;
         let drive_start = c.lmst(
@@ -270,6 +464,14 @@ impl Scenario {
         }
 
         // Calendar.
+        if raw.sols.len() > MAX_SOLS {
+            return Err(ScenarioError::field(
+                path,
+                "sols",
+                format!("at most {MAX_SOLS} [[sols]] entries"),
+                raw.sols.len(),
+            ));
+        }
         if raw.sols.is_empty() {
             return Err(ScenarioError::field(
                 path,
@@ -324,9 +526,20 @@ impl Scenario {
             let historic = match (s.historic_distance_m, s.historic_novo_m) {
                 (None, None) if s.historic_fault.is_none() => None,
                 (Some(dist), novo) => {
-                    let dist = c.non_negative(&f("historic_distance_m"), dist, "metres")?;
-                    let novo =
-                        c.non_negative(&f("historic_novo_m"), novo.unwrap_or(0.0), "metres")?;
+                    let dist = c.in_range(
+                        &f("historic_distance_m"),
+                        dist,
+                        0.0,
+                        MAX_SOL_DRIVE_M,
+                        "metres",
+                    )?;
+                    let novo = c.in_range(
+                        &f("historic_novo_m"),
+                        novo.unwrap_or(0.0),
+                        0.0,
+                        MAX_SOL_DRIVE_M,
+                        "metres",
+                    )?;
                     if novo > dist {
                         return Err(ScenarioError::field(
                             path,
@@ -388,7 +601,7 @@ impl Scenario {
             drive_end,
         };
 
-        // Maps, zones, grid, route.
+        // Map files, georeference, route: everything that does not need the maps read.
         let resolve = |p: &Path| {
             if p.is_absolute() {
                 p.to_path_buf()
@@ -399,9 +612,21 @@ impl Scenario {
         let georef = match (raw.map.resolution_m_per_px, raw.map.origin_m) {
             (None, None) => None,
             (Some(res), Some(o)) => {
-                c.positive("map.resolution_m_per_px", res, "metres per pixel")?;
-                c.finite("map.origin_m[0]", o[0])?;
-                c.finite("map.origin_m[1]", o[1])?;
+                c.positive_at_most(
+                    "map.resolution_m_per_px",
+                    res,
+                    MAX_MAP_RESOLUTION_M,
+                    "metres per pixel",
+                )?;
+                for (i, v) in o.iter().enumerate() {
+                    c.in_range(
+                        &format!("map.origin_m[{i}]"),
+                        *v,
+                        -MAX_COORDINATE_M,
+                        MAX_COORDINATE_M,
+                        "map metres",
+                    )?;
+                }
                 Some(GeoTransform::new(o[0], o[1], res))
             }
             (Some(_), None) => {
@@ -421,41 +646,21 @@ impl Scenario {
                 ));
             }
         };
-        c.finite("map.dem_datum_m", raw.map.dem_datum_m)?;
-        for (field, p) in [
-            ("map.appearance", &raw.map.appearance),
-            ("map.dem", &raw.map.dem),
-            ("map.terrain", &raw.map.terrain),
-            ("map.zones", &raw.map.zones),
-        ] {
-            let full = resolve(p);
-            if !full.is_file() {
-                return Err(ScenarioError::field(
-                    path,
-                    field,
-                    "an existing file (paths are relative to the scenario file)",
-                    full.display(),
-                ));
-            }
-        }
-        let layers = MapLayers::load(
-            &resolve(&raw.map.appearance),
-            &resolve(&raw.map.dem),
-            &resolve(&raw.map.terrain),
+        c.in_range(
+            "map.dem_datum_m",
             raw.map.dem_datum_m,
+            -MAX_DATUM_M,
+            MAX_DATUM_M,
+            "metres",
+        )?;
+        let map = MapFiles {
+            appearance: resolve(&raw.map.appearance),
+            dem: resolve(&raw.map.dem),
+            terrain: resolve(&raw.map.terrain),
+            zones: resolve(&raw.map.zones),
+            dem_datum_m: raw.map.dem_datum_m,
             georef,
-        )
-        .map_err(|source| ScenarioError::Map {
-            path: path.to_path_buf(),
-            field: "map".into(),
-            source: Box::new(source),
-        })?;
-        let zones =
-            ZoneSet::load(&resolve(&raw.map.zones)).map_err(|source| ScenarioError::Zones {
-                path: path.to_path_buf(),
-                source: Box::new(source),
-            })?;
-
+        };
         if raw.route.waypoints.len() < 2 {
             return Err(ScenarioError::field(
                 path,
@@ -464,40 +669,24 @@ impl Scenario {
                 raw.route.waypoints.len(),
             ));
         }
-        let (x0, y0, x1, y1) = layers.dem.extent_m();
         for (i, w) in raw.route.waypoints.iter().enumerate() {
-            let field = format!("route.waypoints[{i}]");
-            c.finite(&format!("{field}[0]"), w[0])?;
-            c.finite(&format!("{field}[1]"), w[1])?;
-            if !layers.dem.contains_point(w[0], w[1]) {
-                return Err(ScenarioError::field(
-                    path,
-                    field,
-                    format!("a point on the map (x {x0:.1}..{x1:.1} m, y {y0:.1}..{y1:.1} m)"),
-                    format!("[{}, {}]", w[0], w[1]),
-                ));
+            for (k, v) in w.iter().enumerate() {
+                c.in_range(
+                    &format!("route.waypoints[{i}][{k}]"),
+                    *v,
+                    -MAX_COORDINATE_M,
+                    MAX_COORDINATE_M,
+                    "map metres",
+                )?;
             }
         }
+        // Positions are checked against the map's extent when it is read ([`Scenario::build`]).
         let science = crate::science::resolve_science(
             path,
             &raw.science,
-            &|p| layers.dem.contains_point(p[0], p[1]),
-            &format!("x {x0:.1}..{x1:.1} m, y {y0:.1}..{y1:.1} m"),
+            &|p| p.iter().all(|v| v.abs() <= MAX_COORDINATE_M),
+            &format!("|x|, |y| ≤ {MAX_COORDINATE_M} m"),
         )?;
-        let grid = Arc::new(PlanningGrid::build(&zones, &layers, &grid_params));
-        let layers = Arc::new(layers);
-        let post_drive_imaging_s = ops
-            .post_drive_imaging_s
-            .unwrap_or(DEFAULT_POST_DRIVE_IMAGING_S);
-        let localizer = match method {
-            None => OnboardLocalizer::Statistical(statistical),
-            Some(method) => {
-                let mut imagery = ImageryLocalizer::new(Arc::clone(&layers), method);
-                imagery.settings.hbs_slowdown = hbs_slowdown;
-                OnboardLocalizer::Imagery(Box::new(imagery))
-            }
-        };
-
         let campaign_ids: Vec<&str> = science.campaign_ids().collect();
         let expectations = raw
             .expect
@@ -505,35 +694,254 @@ impl Scenario {
             .enumerate()
             .map(|(i, e)| e.resolve(path, i, &calendar, &campaign_ids))
             .collect::<Result<Vec<_>, _>>()?;
-
-        let campaign = Campaign {
-            name: raw.name.clone(),
+        let post_drive_imaging_s = ops
+            .post_drive_imaging_s
+            .unwrap_or(DEFAULT_POST_DRIVE_IMAGING_S);
+        if post_drive_imaging_s > SOL_S {
+            return Err(ScenarioError::field(
+                path,
+                "operations.post_drive_imaging_s",
+                format!("at most a sol ({SOL_S} s)"),
+                post_drive_imaging_s,
+            ));
+        }
+        let max_extension_sols = ops.max_extension_sols.unwrap_or(DEFAULT_MAX_EXTENSION_SOLS);
+        if max_extension_sols as usize > MAX_SOLS {
+            return Err(ScenarioError::field(
+                path,
+                "operations.max_extension_sols",
+                format!("at most {MAX_SOLS} sols"),
+                max_extension_sols,
+            ));
+        }
+        Ok(ScenarioSpec {
+            path: path.to_path_buf(),
+            name: raw.name,
+            description: raw.description,
+            sha256,
             seed: raw.seed,
+            map,
+            grid: grid_params,
             route: raw.route.waypoints,
             calendar,
             rover,
             model,
-            localizer,
+            localizer: match method {
+                None => LocalizerSpec::Statistical(statistical),
+                Some(method) => LocalizerSpec::Imagery {
+                    method,
+                    hbs_slowdown,
+                },
+            },
             operator_margin_m,
             post_drive_imaging_s,
-            max_extension_sols: ops.max_extension_sols.unwrap_or(DEFAULT_MAX_EXTENSION_SOLS),
-            grid,
-            sol_plan: sim::sol_plan::SolPlanParams {
-                imaging_s: i64::from(post_drive_imaging_s),
-                ..sim::sol_plan::SolPlanParams::default()
-            },
+            max_extension_sols,
             science,
-        };
-        let legs = campaign::leg_clearances(&campaign);
-        Ok(Scenario {
-            path: path.to_path_buf(),
-            name: raw.name.clone(),
-            description: raw.description,
-            sha256,
-            campaign,
             expectations,
             notes,
             has_history,
+        })
+    }
+}
+
+impl Scenario {
+    /// Read, validate and resolve a scenario file (maps and zones included) within the default
+    /// [`MemoryBudget`].
+    ///
+    /// # Errors
+    /// A [`ScenarioError`] naming the file and the first field at fault.
+    pub fn load(path: &Path) -> Result<Self, ScenarioError> {
+        Self::load_within(path, MemoryBudget::default())
+    }
+
+    /// [`Scenario::load`] within `budget`: the map rasters (from their headers) and the
+    /// planning grid (from the map's extent and `grid.resolution_m`) must fit it together,
+    /// which is checked before any of them is allocated.
+    ///
+    /// # Errors
+    /// A [`ScenarioError`] naming the file and the first field at fault.
+    pub fn load_within(path: &Path, budget: MemoryBudget) -> Result<Self, ScenarioError> {
+        Self::build(ScenarioSpec::load(path)?, budget)
+    }
+
+    /// Reads the maps and zones a validated [`ScenarioSpec`] names, checks the route and the
+    /// science targets against the map, and builds the planning grid and leg clearances.
+    ///
+    /// # Errors
+    /// A [`ScenarioError`] naming the file and the field at fault.
+    pub fn build(spec: ScenarioSpec, budget: MemoryBudget) -> Result<Self, ScenarioError> {
+        let path = spec.path.as_path();
+        let m = &spec.map;
+        let map_error = |field: &str, source: maps::RasterError| ScenarioError::Map {
+            path: path.to_path_buf(),
+            field: field.to_string(),
+            source: Box::new(source),
+        };
+        for (field, p) in [
+            ("map.appearance", &m.appearance),
+            ("map.dem", &m.dem),
+            ("map.terrain", &m.terrain),
+            ("map.zones", &m.zones),
+        ] {
+            if let Err(e) = maps::input_file::regular_file_len(p) {
+                return Err(ScenarioError::field(
+                    path,
+                    field,
+                    "an existing regular file (paths are relative to the scenario file)",
+                    format!("{} ({e})", p.display()),
+                ));
+            }
+        }
+        // The memory the command will hold, before anything is decoded: each layer as read
+        // (from its header: appearance and terrain u8; the DEM f32 plus its 16-bit decode
+        // buffer and its slope layer), one planning grid, and one search per thread of the pool
+        // that runs the strategies (grid size from the DEM's extent). Over the budget, the
+        // largest item is named.
+        let mut items: Vec<(&str, u64, Option<(&Path, maps::raster_io::RasterHeader)>)> =
+            Vec::new();
+        let mut dem_extent_m = None;
+        for (field, p, bytes_per_px) in [
+            ("map.appearance", &m.appearance, 1),
+            ("map.dem", &m.dem, 10),
+            ("map.terrain", &m.terrain, 1),
+        ] {
+            let h = maps::raster_io::read_header(p).map_err(|e| map_error(field, e))?;
+            if field == "map.dem" {
+                let res = m.georef.map(|g| g.resolution_m_per_px).or(h.pixel_size_m);
+                dem_extent_m = res.map(|r| [h.width as f64 * r, h.height as f64 * r]);
+            }
+            items.push((field, h.bytes_as(bytes_per_px), Some((p.as_path(), h))));
+        }
+        let per_cell = PlanningGrid::BYTES_PER_CELL.saturating_add(
+            PlanningGrid::SEARCH_BYTES_PER_CELL.saturating_mul(rayon::current_num_threads() as u64),
+        );
+        let grid_bytes = |extent_m: [f64; 2]| {
+            let cells = PlanningGrid::cells_for(extent_m, spec.grid.resolution_m);
+            (cells, maps::memory_budget::bytes_of(&[cells, per_cell]))
+        };
+        let grid_error = |extent_m: [f64; 2], total: u64| {
+            let (cells, _) = grid_bytes(extent_m);
+            ScenarioError::field(
+                path,
+                "grid.resolution_m",
+                format!(
+                    "a cell size whose planning grid fits the memory budget with the maps \
+                     ({}; --memory-budget-mib)",
+                    maps::input_file::human_bytes(budget.limit_bytes)
+                ),
+                format!(
+                    "{} m: {cells} cells over {:.0} × {:.0} m need {}",
+                    spec.grid.resolution_m,
+                    extent_m[0],
+                    extent_m[1],
+                    maps::input_file::human_bytes(total)
+                ),
+            )
+        };
+        if let Some(extent_m) = dem_extent_m {
+            items.push(("grid.resolution_m", grid_bytes(extent_m).1, None));
+        }
+        let total = items.iter().fold(0u64, |t, i| t.saturating_add(i.1));
+        if !budget.allows(total) {
+            let largest = items
+                .iter()
+                .max_by_key(|i| i.1)
+                .expect("three layers at least");
+            return Err(match (largest.2, dem_extent_m) {
+                (Some((p, h)), _) => map_error(largest.0, h.over_budget(p, largest.1, budget)),
+                (None, Some(extent_m)) => grid_error(extent_m, total),
+                (None, None) => unreachable!("the grid item needs the DEM extent"),
+            });
+        }
+        let layers = MapLayers::load(&m.appearance, &m.dem, &m.terrain, m.dem_datum_m, m.georef)
+            .map_err(|source| {
+                // Name the layer the error is about; a mismatch between layers names `map`.
+                let field = [
+                    ("map.appearance", &m.appearance),
+                    ("map.dem", &m.dem),
+                    ("map.terrain", &m.terrain),
+                ]
+                .into_iter()
+                .find(|(_, p)| p.as_path() == source.path())
+                .map_or("map", |(f, _)| f);
+                map_error(field, source)
+            })?;
+        // Checked again with the extent the layers actually cover.
+        let (x0, y0, x1, y1) = layers.dem.extent_m();
+        let extent_m = [x1 - x0, y1 - y0];
+        let maps_bytes = items[..3].iter().fold(0u64, |t, i| t.saturating_add(i.1));
+        let total = maps_bytes.saturating_add(grid_bytes(extent_m).1);
+        if !budget.allows(total) {
+            return Err(grid_error(extent_m, total));
+        }
+        let zones = ZoneSet::load(&m.zones).map_err(|source| ScenarioError::Zones {
+            path: path.to_path_buf(),
+            source: Box::new(source),
+        })?;
+
+        let extent = format!("x {x0:.1}..{x1:.1} m, y {y0:.1}..{y1:.1} m");
+        for (i, w) in spec.route.iter().enumerate() {
+            if !layers.dem.contains_point(w[0], w[1]) {
+                return Err(ScenarioError::field(
+                    path,
+                    format!("route.waypoints[{i}]"),
+                    format!("a point on the map ({extent})"),
+                    format!("[{}, {}]", w[0], w[1]),
+                ));
+            }
+        }
+        for (i, t) in spec.science.targets.iter().enumerate() {
+            let [x, y] = t.position_m;
+            if !layers.dem.contains_point(x, y) {
+                return Err(ScenarioError::field(
+                    path,
+                    format!("science.targets[{i}].position_m"),
+                    format!("a point on the map ({extent})"),
+                    format!("[{x}, {y}]"),
+                ));
+            }
+        }
+        let grid = Arc::new(PlanningGrid::build(&zones, &layers, &spec.grid));
+        let layers = Arc::new(layers);
+        let localizer = match spec.localizer {
+            LocalizerSpec::Statistical(statistical) => OnboardLocalizer::Statistical(statistical),
+            LocalizerSpec::Imagery {
+                method,
+                hbs_slowdown,
+            } => {
+                let mut imagery = ImageryLocalizer::new(Arc::clone(&layers), method);
+                imagery.settings.hbs_slowdown = hbs_slowdown;
+                OnboardLocalizer::Imagery(Box::new(imagery))
+            }
+        };
+        let campaign = Campaign {
+            name: spec.name.clone(),
+            seed: spec.seed,
+            route: spec.route,
+            calendar: spec.calendar,
+            rover: spec.rover,
+            model: spec.model,
+            localizer,
+            operator_margin_m: spec.operator_margin_m,
+            post_drive_imaging_s: spec.post_drive_imaging_s,
+            max_extension_sols: spec.max_extension_sols,
+            grid,
+            sol_plan: sim::sol_plan::SolPlanParams {
+                imaging_s: i64::from(spec.post_drive_imaging_s),
+                ..sim::sol_plan::SolPlanParams::default()
+            },
+            science: spec.science,
+        };
+        let legs = campaign::leg_clearances(&campaign);
+        Ok(Scenario {
+            path: spec.path,
+            name: spec.name,
+            description: spec.description,
+            sha256: spec.sha256,
+            campaign,
+            expectations: spec.expectations,
+            notes: spec.notes,
+            has_history: spec.has_history,
             layers,
             zones: Arc::new(zones),
             legs,
@@ -559,6 +967,13 @@ impl Scenario {
             };
             campaign::run_campaign(&reseeded, strategy, &self.legs)
         }
+    }
+
+    /// Runs `strategy` as run `run` of a study ([`sim::seeds::run_seed`]: run 0 is the scenario's
+    /// own seed). Every strategy of one run index sees the same world.
+    #[must_use]
+    pub fn run_index(&self, strategy: Strategy, run: u64) -> CampaignOutcome {
+        self.run(strategy, sim::seeds::run_seed(self.seed(), run))
     }
 
     /// Runs each of `strategies` under `seed`, in parallel; the outcomes come back in the order

@@ -3,7 +3,8 @@
 #![allow(dead_code)] // each test binary uses its own subset
 
 use std::path::PathBuf;
-use std::process::{Command, Output};
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
 
 /// The `solsim` binary built for these tests.
 pub fn solsim() -> Command {
@@ -33,5 +34,49 @@ pub fn assert_bad_input(o: &Output, must_contain: &[&str]) {
     assert!(err.starts_with("error: "), "{err}");
     for s in must_contain {
         assert!(err.contains(s), "stderr lacks {s:?}:\n{err}");
+    }
+}
+
+/// Point the relative map and zone paths of a bundled scenario at the repository, so a copy in a
+/// temporary directory still finds them.
+pub fn rebase(text: &str) -> String {
+    let scen = root().join("scenarios");
+    text.replace("\"../maps/", &format!("\"{}/maps/", root().display()))
+        .replace("zones = \"", &format!("zones = \"{}/", scen.display()))
+}
+
+/// A copy of bundled scenario `base` (a file in `scenarios/`) edited by `edit`, written as
+/// `case.toml` in a new temporary directory (kept alive by the returned guard).
+pub fn scenario_copy(base: &str, edit: impl Fn(String) -> String) -> (PathBuf, tempfile::TempDir) {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let text = rebase(&std::fs::read_to_string(root().join("scenarios").join(base)).expect("read"));
+    let path = dir.path().join("case.toml");
+    std::fs::write(&path, edit(text)).expect("write");
+    (path, dir)
+}
+
+/// Runs `cmd` with no standard input and returns its output, killing it and failing the test
+/// if it has not finished within `limit` (a hang is a bug, not a slow test).
+pub fn output_within(cmd: &mut Command, limit: Duration) -> Output {
+    let mut child = cmd
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawns");
+    let start = Instant::now();
+    loop {
+        if child.try_wait().expect("waits").is_some() {
+            return child.wait_with_output().expect("output");
+        }
+        if start.elapsed() > limit {
+            let _ = child.kill();
+            let o = child.wait_with_output().expect("output");
+            panic!(
+                "still running after {limit:?} (killed); stderr: {}",
+                stderr(&o)
+            );
+        }
+        std::thread::sleep(Duration::from_millis(20));
     }
 }

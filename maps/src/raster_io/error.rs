@@ -17,6 +17,30 @@ pub enum RasterError {
         /// Underlying operating-system error.
         source: std::io::Error,
     },
+    /// Not a regular file (a FIFO, a device, a directory): refused before it is
+    /// opened, so a named pipe cannot block the reader.
+    #[error("{}: {error}", path.display())]
+    NotAFile {
+        /// File concerned.
+        path: PathBuf,
+        /// Why (part of the message, so not also a `source`).
+        error: crate::input_file::InputFileError,
+    },
+    /// Decoding the raster would take more memory than the command's budget allows (checked
+    /// from the header, before anything is decoded).
+    #[error("{}: {width} × {height} px would need {}: {budget}", path.display(), crate::input_file::human_bytes(*need_bytes))]
+    OverBudget {
+        /// File concerned.
+        path: PathBuf,
+        /// Width in the header, pixels.
+        width: u64,
+        /// Height in the header, pixels.
+        height: u64,
+        /// Bytes the decoded raster would take.
+        need_bytes: u64,
+        /// The budget it exceeds.
+        budget: crate::memory_budget::MemoryBudget,
+    },
     /// The extension does not name a format this operation supports.
     #[error("{}: expected {expected}, found {found:?}", path.display())]
     UnsupportedFormat {
@@ -189,4 +213,31 @@ pub enum RasterError {
         /// The code found.
         code: u8,
     },
+}
+
+impl RasterError {
+    /// The file the error is about.
+    #[must_use]
+    pub fn path(&self) -> &std::path::Path {
+        match self {
+            RasterError::Io { path, .. }
+            | RasterError::NotAFile { path, .. }
+            | RasterError::OverBudget { path, .. }
+            | RasterError::UnsupportedFormat { path, .. }
+            | RasterError::Decode { path, .. }
+            | RasterError::Encode { path, .. }
+            | RasterError::WrongSampleFormat { path, .. }
+            | RasterError::MissingGeoreference { path, .. }
+            | RasterError::BadGeoreference { path, .. }
+            | RasterError::BadNodata { path, .. }
+            | RasterError::SizeMismatch { path, .. }
+            | RasterError::ExtentMismatch { path, .. }
+            | RasterError::EmptyRaster { path, .. }
+            | RasterError::DataLength { path, .. }
+            | RasterError::NonFinite { path, .. }
+            | RasterError::NoData { path, .. }
+            | RasterError::HeightOutOfRange { path, .. }
+            | RasterError::BadTerrainCode { path, .. } => path,
+        }
+    }
 }

@@ -32,6 +32,10 @@ use crate::raster::{GeoTransform, Raster};
 /// Largest decoded image accepted, so a corrupt header cannot exhaust memory.
 const MAX_DECODED_BYTES: usize = 2 << 30;
 
+/// Largest tag value read (georeference, GeoKeys, no-data text): the tiff crate's own
+/// per-value default.
+const MAX_TAG_BYTES: usize = 1 << 20;
+
 /// GeoKey ids and values used here (GeoTIFF 1.1 Annex B).
 const GT_MODEL_TYPE: u16 = 1024;
 const GT_RASTER_TYPE: u16 = 1025;
@@ -233,12 +237,16 @@ pub(super) fn read_samples(
     accept: impl Fn(Kind) -> bool,
 ) -> Result<RawTiff, RasterError> {
     let err = tiff_error(path, true);
+    super::check_regular_file(path)?;
     let file = File::open(path).map_err(io_error(path))?;
+    // The tiff crate bounds a tag's value by `decoding_buffer_size`: keep it small while the
+    // tags are read (a 500-byte file may declare a 2 GB GDAL_NODATA string), and raise it to
+    // the image limit only for `read_image`.
     let mut limits = Limits::default();
-    limits.decoding_buffer_size = MAX_DECODED_BYTES;
+    limits.decoding_buffer_size = MAX_TAG_BYTES;
     let mut dec = Decoder::new(BufReader::new(file))
         .map_err(&err)?
-        .with_limits(limits);
+        .with_limits(limits.clone());
     let (w, h) = dec.dimensions().map_err(&err)?;
     let color = dec.colortype().map_err(&err)?;
     let format = dec
@@ -267,6 +275,8 @@ pub(super) fn read_samples(
         None => read_georef(&mut dec, path)?,
     };
     let nodata = read_nodata(&mut dec, path)?;
+    limits.decoding_buffer_size = MAX_DECODED_BYTES;
+    dec = dec.with_limits(limits);
     let samples = match dec.read_image().map_err(&err)? {
         DecodingResult::U8(v) => Samples::U8(v),
         DecodingResult::U16(v) => Samples::U16(v),

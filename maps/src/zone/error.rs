@@ -20,7 +20,7 @@ use std::path::PathBuf;
 #[non_exhaustive]
 pub enum ZoneError {
     /// The file could not be read.
-    #[error("{}: {error}", path.display())]
+    #[error("{}: {}", path.display(), crate::input_file::excerpt(&error.to_string(), 200))]
     Io {
         /// The zones file.
         path: PathBuf,
@@ -30,7 +30,7 @@ pub enum ZoneError {
     },
 
     /// The file is not JSON (the message gives the line and column).
-    #[error("{}: invalid JSON: {error}", path.display())]
+    #[error("{}: invalid JSON: {}", path.display(), crate::input_file::excerpt(&error.to_string(), 200))]
     InvalidJson {
         /// The zones file.
         path: PathBuf,
@@ -40,8 +40,8 @@ pub enum ZoneError {
 
     /// The top level is not a GeoJSON FeatureCollection with a `features` array.
     #[error(
-        "{}: {field}: expected a GeoJSON FeatureCollection with a \"features\" array, found {found}",
-        path.display()
+        "{}: {field}: expected a GeoJSON FeatureCollection with a \"features\" array, found {}",
+        path.display(), crate::input_file::excerpt(&format!("{found}"), 80)
     )]
     NotFeatureCollection {
         /// The zones file.
@@ -63,7 +63,7 @@ pub enum ZoneError {
 
     /// A feature is not valid GeoJSON (e.g. not `"type": "Feature"`, or a position with fewer than
     /// two numbers).
-    #[error("{}: features[{feature}] ({name:?}): invalid GeoJSON Feature: {error}", path.display())]
+    #[error("{}: features[{feature}] ({}): invalid GeoJSON Feature: {}", path.display(), crate::input_file::excerpt(&format!("{name:?}"), 80), crate::input_file::excerpt(&error.to_string(), 200))]
     InvalidFeature {
         /// The zones file.
         path: PathBuf,
@@ -76,7 +76,7 @@ pub enum ZoneError {
     },
 
     /// A feature's `properties.name` is present but not a string.
-    #[error("{}: features[{feature}].properties.name: expected a string, found {found}", path.display())]
+    #[error("{}: features[{feature}].properties.name: expected a string, found {}", path.display(), crate::input_file::excerpt(&format!("{found}"), 80))]
     InvalidName {
         /// The zones file.
         path: PathBuf,
@@ -87,7 +87,7 @@ pub enum ZoneError {
     },
 
     /// A feature has `"geometry": null`.
-    #[error("{}: features[{feature}] ({name:?}).geometry: missing; expected a Polygon or MultiPolygon", path.display())]
+    #[error("{}: features[{feature}] ({}).geometry: missing; expected a Polygon or MultiPolygon", path.display(), crate::input_file::excerpt(&format!("{name:?}"), 80))]
     MissingGeometry {
         /// The zones file.
         path: PathBuf,
@@ -99,8 +99,8 @@ pub enum ZoneError {
 
     /// A feature's geometry is neither a Polygon nor a MultiPolygon.
     #[error(
-        "{}: features[{feature}] ({name:?}).geometry.type: unsupported geometry {found:?}; expected \"Polygon\" or \"MultiPolygon\"",
-        path.display()
+        "{}: features[{feature}] ({}).geometry.type: unsupported geometry {}; expected \"Polygon\" or \"MultiPolygon\"",
+        path.display(), crate::input_file::excerpt(&format!("{name:?}"), 80), crate::input_file::excerpt(&format!("{found:?}"), 80)
     )]
     UnsupportedGeometry {
         /// The zones file.
@@ -115,8 +115,8 @@ pub enum ZoneError {
 
     /// A feature has no `properties.kind`.
     #[error(
-        "{}: features[{feature}] ({name:?}).properties.kind: missing; expected \"keep_in\" or \"keep_out\"",
-        path.display()
+        "{}: features[{feature}] ({}).properties.kind: missing; expected \"keep_in\" or \"keep_out\"",
+        path.display(), crate::input_file::excerpt(&format!("{name:?}"), 80)
     )]
     MissingKind {
         /// The zones file.
@@ -129,8 +129,8 @@ pub enum ZoneError {
 
     /// A feature's `properties.kind` is not one of the known kinds.
     #[error(
-        "{}: features[{feature}] ({name:?}).properties.kind: unknown kind {found}; expected \"keep_in\" or \"keep_out\"",
-        path.display()
+        "{}: features[{feature}] ({}).properties.kind: unknown kind {}; expected \"keep_in\" or \"keep_out\"",
+        path.display(), crate::input_file::excerpt(&format!("{name:?}"), 80), crate::input_file::excerpt(&format!("{found}"), 80)
     )]
     UnknownKind {
         /// The zones file.
@@ -144,7 +144,7 @@ pub enum ZoneError {
     },
 
     /// A polygon has no rings (`"coordinates": []`).
-    #[error("{}: features[{feature}] ({name:?}).{field}: polygon has no rings", path.display())]
+    #[error("{}: features[{feature}] ({}).{field}: polygon has no rings", path.display(), crate::input_file::excerpt(&format!("{name:?}"), 80))]
     EmptyPolygon {
         /// The zones file.
         path: PathBuf,
@@ -158,8 +158,8 @@ pub enum ZoneError {
 
     /// A coordinate is NaN or infinite (a `NaN` or `Infinity` literal, as some JSON writers emit).
     #[error(
-        "{}: features[{feature}] ({name:?}).{field}: {axis} is {value}; expected a finite number of metres",
-        path.display()
+        "{}: features[{feature}] ({}).{field}: {axis} is {value}; expected a finite number of metres",
+        path.display(), crate::input_file::excerpt(&format!("{name:?}"), 80)
     )]
     NonFiniteCoordinate {
         /// The zones file.
@@ -176,10 +176,31 @@ pub enum ZoneError {
         value: String,
     },
 
+    /// A coordinate is finite but off any Mars map (beyond [`crate::zone::MAX_COORDINATE_M`]):
+    /// distances to it would lose every digit of a metre.
+    #[error(
+        "{}: features[{feature}] ({}).{field}: expected {axis} within ±{} m (map metres on Mars), got {value:e}",
+        path.display(), crate::input_file::excerpt(&format!("{name:?}"), 80), crate::zone::MAX_COORDINATE_M
+    )]
+    CoordinateOutOfRange {
+        /// The zones file.
+        path: PathBuf,
+        /// Index in `features`.
+        feature: usize,
+        /// The feature's name, or `zone-<index>`.
+        name: String,
+        /// The number's position, e.g. `geometry.coordinates[0][5][0]`.
+        field: String,
+        /// `x`, `y` or `z`.
+        axis: &'static str,
+        /// The value found.
+        value: f64,
+    },
+
     /// A position has fewer than two numbers.
     #[error(
-        "{}: features[{feature}] ({name:?}).{field}: position has {len} number(s); expected [x, y] in metres",
-        path.display()
+        "{}: features[{feature}] ({}).{field}: position has {len} number(s); expected [x, y] in metres",
+        path.display(), crate::input_file::excerpt(&format!("{name:?}"), 80)
     )]
     PositionTooShort {
         /// The zones file.
@@ -196,8 +217,8 @@ pub enum ZoneError {
 
     /// A ring has fewer than the 4 positions GeoJSON requires.
     #[error(
-        "{}: features[{feature}] ({name:?}).{field}: ring has {positions} positions; expected at least 4 (first = last)",
-        path.display()
+        "{}: features[{feature}] ({}).{field}: ring has {positions} positions; expected at least 4 (first = last)",
+        path.display(), crate::input_file::excerpt(&format!("{name:?}"), 80)
     )]
     RingTooShort {
         /// The zones file.
@@ -214,8 +235,8 @@ pub enum ZoneError {
 
     /// A ring does not end where it starts (GeoJSON rings are explicitly closed).
     #[error(
-        "{}: features[{feature}] ({name:?}).{field}: ring is not closed: starts at {} but ends at {}; repeat the first position at the end",
-        path.display(), Xy(*first), Xy(*last)
+        "{}: features[{feature}] ({}).{field}: ring is not closed: starts at {} but ends at {}; repeat the first position at the end",
+        path.display(), crate::input_file::excerpt(&format!("{name:?}"), 80), Xy(*first), Xy(*last)
     )]
     RingNotClosed {
         /// The zones file.
@@ -234,8 +255,8 @@ pub enum ZoneError {
 
     /// A ring encloses no area: fewer than 3 distinct vertices, or all on one line.
     #[error(
-        "{}: features[{feature}] ({name:?}).{field}: ring encloses zero area; expected at least 3 vertices not on one line",
-        path.display()
+        "{}: features[{feature}] ({}).{field}: ring encloses zero area; expected at least 3 vertices not on one line",
+        path.display(), crate::input_file::excerpt(&format!("{name:?}"), 80)
     )]
     ZeroAreaRing {
         /// The zones file.
@@ -250,8 +271,8 @@ pub enum ZoneError {
 
     /// A ring crosses, touches or doubles back on itself (a bow-tie, a figure eight, a spike).
     #[error(
-        "{}: features[{feature}] ({name:?}).{field}: ring {ring} crosses itself at {}; expected a simple polygon",
-        path.display(), Xy(*at)
+        "{}: features[{feature}] ({}).{field}: ring {ring} crosses itself at {}; expected a simple polygon",
+        path.display(), crate::input_file::excerpt(&format!("{name:?}"), 80), Xy(*at)
     )]
     SelfIntersection {
         /// The zones file.
@@ -270,8 +291,8 @@ pub enum ZoneError {
 
     /// Two rings of a polygon cross or share part of an edge (e.g. a hole crossing its shell).
     #[error(
-        "{}: features[{feature}] ({name:?}).{field}: ring {ring_a} crosses ring {ring_b} at {}; rings may only touch at single points",
-        path.display(), Xy(*at)
+        "{}: features[{feature}] ({}).{field}: ring {ring_a} crosses ring {ring_b} at {}; rings may only touch at single points",
+        path.display(), crate::input_file::excerpt(&format!("{name:?}"), 80), Xy(*at)
     )]
     RingsCross {
         /// The zones file.
@@ -292,8 +313,8 @@ pub enum ZoneError {
 
     /// A hole is not inside its polygon's outer ring.
     #[error(
-        "{}: features[{feature}] ({name:?}).{field}: hole (ring {ring}) lies outside the outer ring; expected holes inside ring 0",
-        path.display()
+        "{}: features[{feature}] ({}).{field}: hole (ring {ring}) lies outside the outer ring; expected holes inside ring 0",
+        path.display(), crate::input_file::excerpt(&format!("{name:?}"), 80)
     )]
     HoleOutsideShell {
         /// The zones file.
@@ -310,8 +331,8 @@ pub enum ZoneError {
 
     /// One hole of a polygon lies inside another.
     #[error(
-        "{}: features[{feature}] ({name:?}).{field}: holes (rings {ring_a} and {ring_b}) overlap; expected disjoint holes",
-        path.display()
+        "{}: features[{feature}] ({}).{field}: holes (rings {ring_a} and {ring_b}) overlap; expected disjoint holes",
+        path.display(), crate::input_file::excerpt(&format!("{name:?}"), 80)
     )]
     HolesOverlap {
         /// The zones file.

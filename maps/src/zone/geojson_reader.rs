@@ -94,13 +94,23 @@ fn read_feature(i: usize, value: Value, path: &Path) -> Result<ZoneRecord, ZoneE
         find_non_finite(
             coordinates,
             &mut "geometry.coordinates".to_owned(),
-            &|field, axis, literal| ZoneError::NonFiniteCoordinate {
-                path: path.to_owned(),
-                feature: i,
-                name: name.clone(),
-                field,
-                axis,
-                value: literal.to_owned(),
+            &|field, axis, bad| match bad {
+                BadCoordinate::NonFinite(literal) => ZoneError::NonFiniteCoordinate {
+                    path: path.to_owned(),
+                    feature: i,
+                    name: name.clone(),
+                    field,
+                    axis,
+                    value: literal.to_owned(),
+                },
+                BadCoordinate::OutOfRange(value) => ZoneError::CoordinateOutOfRange {
+                    path: path.to_owned(),
+                    feature: i,
+                    name: name.clone(),
+                    field,
+                    axis,
+                    value,
+                },
             },
         )?;
     }
@@ -289,25 +299,46 @@ impl FeatureContext<'_> {
     }
 }
 
-/// Report the first non-finite stand-in (see [`quote_non_finite_literals`]) in a coordinates
-/// array, with its JSON path.
+/// A coordinate the reader refuses before parsing the geometry.
+enum BadCoordinate<'a> {
+    /// `NaN`, `Infinity` or `-Infinity` (the literal).
+    NonFinite(&'a str),
+    /// Finite, but beyond [`crate::zone::MAX_COORDINATE_M`] (the value).
+    OutOfRange(f64),
+}
+
+/// Report the first non-finite stand-in (see [`quote_non_finite_literals`]) or out-of-range
+/// number in a coordinates array, with its JSON path.
 fn find_non_finite(
     value: &Value,
     field: &mut String,
-    error: &dyn Fn(String, &'static str, &str) -> ZoneError,
+    error: &dyn Fn(String, &'static str, BadCoordinate<'_>) -> ZoneError,
 ) -> Result<(), ZoneError> {
     let Value::Array(items) = value else {
         return Ok(());
     };
     for (k, item) in items.iter().enumerate() {
+        let axis = match k {
+            0 => "x",
+            1 => "y",
+            _ => "z",
+        };
         match item {
             Value::String(s) if s.starts_with(NON_FINITE_MARK) => {
-                let axis = match k {
-                    0 => "x",
-                    1 => "y",
-                    _ => "z",
-                };
-                return Err(error(field.clone(), axis, &s[NON_FINITE_MARK.len_utf8()..]));
+                let literal = &s[NON_FINITE_MARK.len_utf8()..];
+                return Err(error(
+                    field.clone(),
+                    axis,
+                    BadCoordinate::NonFinite(literal),
+                ));
+            }
+            Value::Number(n)
+                if n.as_f64()
+                    .is_some_and(|v| v.abs() > crate::zone::MAX_COORDINATE_M) =>
+            {
+                let v = n.as_f64().unwrap_or(f64::INFINITY);
+                let field = format!("{field}[{k}]");
+                return Err(error(field, axis, BadCoordinate::OutOfRange(v)));
             }
             Value::Array(_) => {
                 let len = field.len();
