@@ -27,7 +27,7 @@
 //! Paper 000 §4 (accuracy, search radius), §5 (census matching, DEM SSD, sub-pixel fit, easting
 //! scale), §7 (validity checks before the result is applied).
 
-use maps::{GeoTransform, Raster};
+use maps::Raster;
 
 use crate::baselines::{mi_scores, ncc_scores, template_entropy};
 use crate::census::{MatchError, ScoreMap, census_transform_raster, subpixel_peak};
@@ -308,22 +308,6 @@ fn rescale_easting(ortho: &Raster<u8>, valid: &[bool], scale: f64) -> (Raster<u8
     (out, out_valid)
 }
 
-/// Crop `r` to `cols × rows` pixels starting at (`col0`, `row0`).
-fn crop<T: Copy>(r: &Raster<T>, col0: usize, row0: usize, cols: usize, rows: usize) -> Raster<T> {
-    let mut data = Vec::with_capacity(cols * rows);
-    for row in row0..row0 + rows {
-        data.extend_from_slice(&r.data[row * r.width + col0..row * r.width + col0 + cols]);
-    }
-    let (x, y) = r.geo.center_of(col0, row0);
-    let res = r.geo.resolution_m_per_px;
-    Raster {
-        width: cols,
-        height: rows,
-        geo: GeoTransform::new(x - res / 2.0, y + res / 2.0, res),
-        data,
-    }
-}
-
 /// Census appearance scores of the (rescaled) orthomosaic at every offset inside `window`.
 fn census_scores(
     window: &Raster<u8>,
@@ -401,14 +385,12 @@ pub fn localize(
         prior_m,
         radius_m: p.search_radius_m,
     };
-    if !(c0 >= 0.0 && r0 >= 0.0)
-        || c0.round() as usize + cols > map.width
-        || r0.round() as usize + rows > map.height
-    {
+    if !(c0 >= 0.0 && r0 >= 0.0) {
         return Err(off_map());
     }
-    let (c0, r0) = (c0.round() as usize, r0.round() as usize);
-    let window = crop(map, c0, r0, cols, rows);
+    let window = map
+        .try_crop(c0.round() as usize, r0.round() as usize, cols, rows)
+        .ok_or_else(off_map)?;
     // Appearance score per offset (lower is better) and, for census, the valid bits per offset.
     let (sw, sh, appearance, census_bits) = match p.method {
         Method::Census => {
@@ -444,10 +426,8 @@ pub fn localize(
         let drows = rdem.height + 2 * (radius_px / k) + 2;
         if dc0 >= 0
             && dr0 >= 0
-            && dc0 as usize + dcols <= mdem.width
-            && dr0 as usize + drows <= mdem.height
+            && let Some(dwin) = mdem.try_crop(dc0 as usize, dr0 as usize, dcols, drows)
         {
-            let dwin = crop(mdem, dc0 as usize, dr0 as usize, dcols, drows);
             let (ow, oh, ds) = crate::dem_score::dem_scores(rdem, rvalid, &dwin, p.dem_scale_m);
             // Appearance offset (ax, ay) puts the template's NW corner at window pixel (ax, ay);
             // the rover DEM's NW corner is the template's (both centred on the rover).
@@ -594,6 +574,7 @@ fn bilinear(g: &[f64], w: usize, h: usize, fx: f64, fy: f64) -> f64 {
 mod tests {
     use super::*;
     use crate::synthetic::sinusoid_texture;
+    use maps::GeoTransform;
 
     #[test]
     fn easting_scale_is_one_at_true_scale_and_grows_poleward() {
@@ -610,7 +591,7 @@ mod tests {
         let truth = [100.0, 90.0];
         let (tc, tr) = map.geo.pixel_of(truth[0], truth[1]);
         let (c0, r0) = (tc as usize - 120, tr as usize - 120);
-        let mut ortho = crop(&map, c0, r0, 240, 240);
+        let mut ortho = map.try_crop(c0, r0, 240, 240).unwrap();
         // A different monotonic camera response: census does not care.
         for v in &mut ortho.data {
             *v = (f64::from(*v).powf(0.8) * 2.0).min(255.0) as u8;
@@ -665,7 +646,9 @@ mod tests {
         let map = sinusoid_texture(800, 800, geo, 7);
         let truth = [100.0, 90.0];
         let (tc, tr) = map.geo.pixel_of(truth[0], truth[1]);
-        let mut ortho = crop(&map, tc as usize - 120, tr as usize - 120, 240, 240);
+        let mut ortho = map
+            .try_crop(tc as usize - 120, tr as usize - 120, 240, 240)
+            .unwrap();
         // A linear camera response change (gain and offset).
         for v in &mut ortho.data {
             *v = (0.7 * f64::from(*v) + 40.0) as u8;
@@ -718,9 +701,13 @@ mod tests {
         };
         let truth = [100.0, 90.0];
         let (tc, tr) = map.geo.pixel_of(truth[0], truth[1]);
-        let ortho = crop(&map, tc as usize - 120, tr as usize - 120, 240, 240);
+        let ortho = map
+            .try_crop(tc as usize - 120, tr as usize - 120, 240, 240)
+            .unwrap();
         let (dc, dr) = dem.geo.pixel_of(truth[0], truth[1]);
-        let mut rdem = crop(&dem, dc as usize - 30, dr as usize - 30, 60, 60);
+        let mut rdem = dem
+            .try_crop(dc as usize - 30, dr as usize - 30, 60, 60)
+            .unwrap();
         for v in &mut rdem.data {
             *v += 3.0; // the rover's heights have an unknown vertical offset
         }
@@ -750,7 +737,7 @@ mod tests {
     fn bad_inputs_are_errors() {
         let geo = GeoTransform::new(0.0, 150.0, 0.25);
         let map = sinusoid_texture(600, 600, geo, 1);
-        let ortho = crop(&map, 0, 0, 240, 240);
+        let ortho = map.try_crop(0, 0, 240, 240).unwrap();
         let valid = vec![true; 240 * 240];
         let orbital = OrbitalMap {
             appearance: &map,
