@@ -16,7 +16,6 @@ use std::time::Duration;
 use planner::{
     Instance, MICRO_PER_POINT, PlanOutcome, SearchSettings, State, TaskId, Violation, validate_plan,
 };
-use sim::time::SolSeconds;
 
 mod report_format;
 
@@ -112,9 +111,7 @@ pub struct PlanReport {
     pub time_budget_ms: Option<u64>,
 }
 
-pub(crate) fn lmst(s: i64) -> String {
-    SolSeconds(s.clamp(0, i64::from(u32::MAX)) as u32).lmst()
-}
+pub(crate) use sim::time::lmst_of as lmst;
 
 fn points(micro: i64) -> f64 {
     micro as f64 / MICRO_PER_POINT

@@ -40,6 +40,13 @@ impl SolSeconds {
     }
 }
 
+/// The LMST clock reading `HH:MM` of `s` seconds after local midnight (clamped to the sol's
+/// range of [`SolSeconds`]): the one formatter of plan, sol-log and message times.
+#[must_use]
+pub fn lmst_of(s: i64) -> String {
+    SolSeconds(s.clamp(0, i64::from(u32::MAX)) as u32).lmst()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

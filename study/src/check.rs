@@ -131,7 +131,4 @@ impl Check<'_> {
     }
 }
 
-/// `HH:MM` LMST of seconds after local midnight, for messages.
-pub(crate) fn lmst_of(s: i64) -> String {
-    SolSeconds(s.clamp(0, i64::from(u32::MAX)) as u32).lmst()
-}
+pub(crate) use sim::time::lmst_of;

@@ -20,7 +20,7 @@ use crate::check::Check;
 use crate::error::ScenarioError;
 
 /// A whole sol, s: the window the campaign checks run against.
-const SOL_S: i64 = 88_775;
+const SOL_S: i64 = sim::time::SOL_S as i64;
 
 /// Validate `[science]`; `on_map(p)` says whether a position is on the map, `extent` how to
 /// say where the map is.

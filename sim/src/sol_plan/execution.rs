@@ -8,7 +8,6 @@ use planner::{
 
 use super::record::status_name;
 use super::{SolPlan, SolPlanParams, SolPlanRequest, TimelineStep, sol_problem};
-use crate::time::SolSeconds;
 
 /// The next step of the sol's plan, as the simulator executes it.
 #[derive(Clone, Debug, PartialEq)]
@@ -58,9 +57,7 @@ pub struct SolExecution {
     violations: Vec<String>,
 }
 
-fn lmst(s: i64) -> String {
-    SolSeconds(s.clamp(0, i64::from(u32::MAX)) as u32).lmst()
-}
+use crate::time::lmst_of as lmst;
 
 /// `"4 min 10 s late (planned 14:05)"`.
 fn slip(actual_s: i64, planned_s: i64) -> String {
