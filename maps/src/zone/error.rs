@@ -41,7 +41,7 @@ pub enum ZoneError {
     /// The top level is not a GeoJSON FeatureCollection with a `features` array.
     #[error(
         "{}: {field}: expected a GeoJSON FeatureCollection with a \"features\" array, found {}",
-        path.display(), crate::input_file::excerpt(&format!("{found}"), 80)
+        path.display(), crate::input_file::excerpt(found, 80)
     )]
     NotFeatureCollection {
         /// The zones file.
@@ -76,7 +76,7 @@ pub enum ZoneError {
     },
 
     /// A feature's `properties.name` is present but not a string.
-    #[error("{}: features[{feature}].properties.name: expected a string, found {}", path.display(), crate::input_file::excerpt(&format!("{found}"), 80))]
+    #[error("{}: features[{feature}].properties.name: expected a string, found {}", path.display(), crate::input_file::excerpt(found, 80))]
     InvalidName {
         /// The zones file.
         path: PathBuf,
@@ -130,7 +130,7 @@ pub enum ZoneError {
     /// A feature's `properties.kind` is not one of the known kinds.
     #[error(
         "{}: features[{feature}] ({}).properties.kind: unknown kind {}; expected \"keep_in\" or \"keep_out\"",
-        path.display(), crate::input_file::excerpt(&format!("{name:?}"), 80), crate::input_file::excerpt(&format!("{found}"), 80)
+        path.display(), crate::input_file::excerpt(&format!("{name:?}"), 80), crate::input_file::excerpt(found, 80)
     )]
     UnknownKind {
         /// The zones file.
