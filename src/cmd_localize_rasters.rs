@@ -19,7 +19,8 @@ use localization::matcher::{
     JEZERO_TRUE_SCALE_LATITUDE_DEG, LocalizeError, MatchParams, MatchResult, Method, OrbitalMap,
     RoverImages, localize,
 };
-use maps::raster_io::{read_dem_with_holes, read_raster, read_raster_with_nodata};
+use maps::MemoryBudget;
+use maps::raster_io::{read_dem_with_holes, read_header, read_raster, read_raster_with_nodata};
 use maps::{GeoTransform, Raster, RasterError};
 use serde_json::json;
 
@@ -296,6 +297,40 @@ fn read_mask(
     Ok(mask.data.iter().map(|&v| v != 0).collect())
 }
 
+/// Checks every raster input against `budget` from its header, before any is decoded: the
+/// rasters as held (u8 images and masks with their decode buffers and validity masks, 2 bytes
+/// per pixel; DEMs as f32 with their 16-bit decode buffer and hole mask, 7) plus the matcher's
+/// census and score planes over the orbital orthoimage (8 bytes per map pixel). Over it, the
+/// largest input is named.
+fn check_budget(a: &LocalizeArgs, budget: MemoryBudget) -> anyhow::Result<()> {
+    let mut inputs = vec![
+        ("--map-appearance", &a.map_appearance, 2 + 8),
+        ("--ortho", &a.ortho, 2),
+    ];
+    for (flag, path, bytes_per_px) in [
+        ("--map-dem", &a.map_dem, 7),
+        ("--ortho-valid", &a.ortho_valid, 2),
+        ("--rover-dem", &a.rover_dem, 7),
+        ("--rover-dem-valid", &a.rover_dem_valid, 2),
+    ] {
+        if let Some(path) = path {
+            inputs.push((flag, path, bytes_per_px));
+        }
+    }
+    let mut sized = Vec::with_capacity(inputs.len());
+    for (flag, path, bytes_per_px) in inputs {
+        let h = read_header(path).map_err(|e| anyhow::anyhow!("{flag} {e}"))?;
+        sized.push((flag, path, h, h.bytes_as(bytes_per_px)));
+    }
+    let total = sized.iter().fold(0u64, |t, s| t.saturating_add(s.3));
+    match sized.iter().max_by_key(|s| s.3) {
+        Some((flag, path, h, need)) if !budget.allows(total) => {
+            bail!("{flag} {}", h.over_budget(path, *need, budget))
+        }
+        _ => Ok(()),
+    }
+}
+
 /// Everything `localize` needs, read and checked.
 #[derive(Debug)]
 pub struct LocalizeInputs {
@@ -371,8 +406,9 @@ impl LocalizeInputs {
 /// Unreadable or missing files, wrong pixel types, missing or contradictory georeferences,
 /// masks of the wrong size, no valid pixels, resolution mismatches, a prior off the map, a
 /// search window leaving the map, non-finite or out-of-range flags.
-pub fn load(a: &LocalizeArgs) -> anyhow::Result<LocalizeInputs> {
+pub fn load(a: &LocalizeArgs, budget: MemoryBudget) -> anyhow::Result<LocalizeInputs> {
     let method = check_flags(a)?;
+    check_budget(a, budget)?;
     let appearance = read_placed(
         "--map-appearance",
         &a.map_appearance,
@@ -657,10 +693,11 @@ pub fn json_doc(a: &LocalizeArgs, inp: &LocalizeInputs, m: &MatchResult) -> serd
 /// Bad input (see [`load`]) and failed writes; a rejected match is not an error.
 pub fn run(
     a: &LocalizeArgs,
+    budget: MemoryBudget,
     out: &mut dyn Write,
     err: &mut dyn Write,
 ) -> anyhow::Result<MatchResult> {
-    let inp = load(a)?;
+    let inp = load(a, budget)?;
     match (&a.map_dem, &a.rover_dem) {
         (Some(_), None) => writeln!(
             err,

@@ -328,7 +328,7 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
             Ok(ExitCode::SUCCESS)
         }
         Command::Localize(a) => {
-            cmd_localize_rasters::run(&a, stdout, &mut std::io::stderr())?;
+            cmd_localize_rasters::run(&a, budget, stdout, &mut std::io::stderr())?;
             Ok(ExitCode::SUCCESS)
         }
         Command::Plan(a) => {

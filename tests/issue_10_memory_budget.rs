@@ -142,3 +142,32 @@ fn a_46000_px_png_map_layer_is_refused_from_its_header() {
         ],
     );
 }
+
+#[test]
+fn a_46000_px_png_as_ortho_is_refused_from_its_header() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let png = dir.path().join("ortho.png");
+    std::fs::write(&png, huge_png(46_000)).expect("write");
+    assert!(
+        std::fs::metadata(&png).expect("size").len() < 200,
+        "a tiny file"
+    );
+    let o = output_within(
+        solsim()
+            .args(["localize", "--map-appearance"])
+            .arg(root().join("maps/assets/crater-floor/appearance.tif"))
+            .arg("--ortho")
+            .arg(&png)
+            .args(["--prior", "600,300"]),
+        LIMIT,
+    );
+    assert_bad_input(
+        &o,
+        &[
+            "--ortho ",
+            "ortho.png",
+            "46000 × 46000 px would need",
+            "memory budget",
+        ],
+    );
+}

@@ -13,16 +13,36 @@
 //! - [`error`]: [`ScenarioError`], one line naming the file, the field and what was expected.
 //! - [`input`]: reading a TOML input (a regular file, a size cap) and the memory budget.
 //!
-//! ```no_run
-//! use study::Scenario;
+//! ```
 //! use sim::Strategy;
+//! use study::Scenario;
 //!
-//! let scenario = Scenario::load("scenarios/sol383-386.toml".as_ref())?;
-//! for seed in 0..10 {
-//!     let outcome = scenario.run(Strategy::Onboard, seed);
-//!     println!("seed {seed}: {} NO_PATH faults", outcome.totals.no_path_faults);
+//! // Sols 383-386 (paper 000 §2): the ground-in-the-loop plan faults NO_PATH on sol 385.
+//! let scenario = Scenario::load("../scenarios/sol383-386.toml".as_ref())?;
+//! for run in 0..2 {
+//!     // Run 0 is the scenario's own seed; each run index is another world and other draws.
+//!     let outcome = scenario.run_index(Strategy::Ground, run);
+//!     assert_eq!(outcome.sols.len(), 4);
+//!     assert!(outcome.totals.no_path_faults >= 1);
 //! }
 //! # Ok::<(), study::ScenarioError>(())
+//! ```
+//!
+//! Hostile input is an error naming the file and the field, before anything large is
+//! allocated:
+//!
+//! ```
+//! use std::path::Path;
+//! use study::scenario::ScenarioSpec;
+//!
+//! let text = std::fs::read_to_string("../scenarios/sol383-386.toml")?;
+//! let text = text.replace("k_vo = 0.05", "k_vo = 1e300");
+//! let e = ScenarioSpec::from_toml_str(Path::new("x.toml"), &text).unwrap_err();
+//! assert_eq!(
+//!     e.to_string(),
+//!     "x.toml: uncertainty.k_vo: expected 0 ..= 1 metres per metre, got 1e300"
+//! );
+//! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 #![warn(missing_docs)]
 
