@@ -92,7 +92,9 @@ pub fn sols_csv(outcome: &CampaignOutcome) -> String {
             r.sol,
             r.plan_uplink_sol,
             r.drove,
-            r.skip_reason.as_deref().map(csv_quote).unwrap_or_default(),
+            r.skip_reason
+                .map(|why| csv_quote(&why.to_string()))
+                .unwrap_or_default(),
             r.distance_m,
             r.d_vo_m,
             r.d_novo_m,
@@ -232,8 +234,7 @@ pub fn sol_table(outcome: &CampaignOutcome) -> String {
         });
         let mut note = r
             .skip_reason
-            .clone()
-            .map(|s| format!("skipped: {s}"))
+            .map(|why| format!("skipped: {why}"))
             .unwrap_or_default();
         if r.ground_localization.is_some() {
             note = format!("ground-localized; {note}");
@@ -252,7 +253,10 @@ pub fn sol_table(outcome: &CampaignOutcome) -> String {
                 format!(
                     "onboard loc ({}{when}) lost: {}",
                     l.localizer,
-                    l.reason.as_deref().unwrap_or("")
+                    l.reason
+                        .as_ref()
+                        .map(ToString::to_string)
+                        .unwrap_or_default()
                 )
             });
         }

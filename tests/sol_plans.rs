@@ -5,8 +5,10 @@
 
 use std::path::Path;
 
+use localization::hbs::HbsStep;
 use sim::Strategy;
-use sim::sol_plan::LOCALIZATION_CHAIN;
+use sim::outcome::{LocalizationStep, RejectionReason};
+use sim::sol_plan::{LOCALIZATION_CHAIN, SolPlanStatus};
 use std::collections::HashMap;
 
 use sim::CampaignOutcome;
@@ -47,7 +49,10 @@ fn every_drive_sol_of_the_rapid_traverse_has_a_valid_plan_with_the_chain_under_o
                 plan.violations
             );
             assert!(
-                matches!(plan.status, "optimal" | "feasible"),
+                matches!(
+                    plan.status,
+                    SolPlanStatus::Optimal | SolPlanStatus::Feasible
+                ),
                 "{strategy:?} sol {}: {}",
                 sol.sol,
                 plan.status
@@ -201,13 +206,13 @@ fn the_self_reliant_campaign_executes_science_and_replans() {
     let log_run_1 = event
         .steps
         .iter()
-        .find(|e| e.step == "RUN_1")
+        .find(|e| e.step == LocalizationStep::Onboard(HbsStep::Run1))
         .expect("RUN_1")
         .t_s;
     let log_transfer = event
         .steps
         .iter()
-        .find(|e| e.step == "TRANSFER_TO_HBS")
+        .find(|e| e.step == LocalizationStep::Onboard(HbsStep::TransferToHbs))
         .expect("xfer")
         .t_s;
     assert_eq!(
@@ -248,10 +253,16 @@ fn a_lost_localization_replans_the_rest_of_the_sol() {
         );
         let event = sol.onboard_localization.as_ref().expect("event");
         assert!(!event.applied);
+        assert_eq!(
+            event.reason,
+            Some(RejectionReason::ModelledAmbiguousMatch),
+            "{}",
+            sol.sol
+        );
         assert!(
-            plan.changes
-                .iter()
-                .any(|c| c.contains("localization lost") && c.ends_with("replanned")),
+            plan.changes.iter().any(|c| c
+                .contains("localization lost: validity checks failed: ambiguous map match")
+                && c.ends_with("replanned")),
             "{}: {:?}",
             sol.sol,
             plan.changes
@@ -259,4 +270,61 @@ fn a_lost_localization_replans_the_rest_of_the_sol() {
         lost += 1;
     }
     assert!(lost >= 2, "{lost} drive sols");
+}
+
+/// The sol log's typed outcomes are written as their `Display` text: the JSON string of each
+/// enum value is exactly what tables and CSV print (the before/after outputs stay byte-identical).
+#[test]
+fn typed_outcomes_serialise_as_their_display_text() {
+    use localization::hbs::LossReason;
+    use localization::onboard::LostReason;
+    use sim::FaultKind;
+    use sim::outcome::{LocalizationKind, SkipReason};
+
+    fn same<T: serde::Serialize + std::fmt::Display>(v: T, text: &str) {
+        assert_eq!(v.to_string(), text);
+        assert_eq!(
+            serde_json::to_value(&v).expect("serialises"),
+            serde_json::Value::String(text.into())
+        );
+    }
+    for s in Strategy::ALL {
+        same(s, s.name());
+    }
+    same(SolPlanStatus::Optimal, "optimal");
+    same(SolPlanStatus::NoPlanFound, "no plan found");
+    same(SolPlanStatus::NotPlanned, "not planned");
+    same(LocalizationKind::Ground, "ground");
+    same(LocalizationKind::Onboard, "onboard");
+    same(
+        LocalizationStep::GroundLocalizedHere,
+        "MOB_GROUND_LOCALIZED_HERE",
+    );
+    same(
+        LocalizationStep::Onboard(HbsStep::ApplyLocalization),
+        "MOB_APPLY_ONBD_LOCALIZATION",
+    );
+    same(HbsStep::Run2, "RUN_2");
+    same(FaultKind::NoPath, "NO_PATH");
+    same(SkipReason::RouteComplete, "route complete");
+    same(
+        SkipReason::ExtensionLimit {
+            sols_without_localization: 3,
+        },
+        "extension limit: 3 sols without a localization",
+    );
+    same(
+        RejectionReason::ModelledAmbiguousMatch,
+        "validity checks failed: ambiguous map match",
+    );
+    same(
+        RejectionReason::Onboard(LostReason::Hbs(LossReason::Timeout { run: 2 })),
+        "run 2 timed out (HBS stall)",
+    );
+    same(
+        RejectionReason::Onboard(LostReason::Hbs(LossReason::Invalid {
+            reason: "REJECTED: ambiguous match".into(),
+        })),
+        "validity checks failed: REJECTED: ambiguous match",
+    );
 }

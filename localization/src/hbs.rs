@@ -148,15 +148,67 @@ impl std::fmt::Display for LossReason {
     }
 }
 
+/// A step of the onboard localization activity (paper 000 Fig. 19): the rover's flight
+/// commands and the co-processor steps between them, in the order they run. Serialised and
+/// displayed as the flight-style name ([`HbsStep::name`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+pub enum HbsStep {
+    /// `MOB_WRITE_ONBD_INPUT_FILE`: the rover writes the input files and their checksums.
+    #[serde(rename = "MOB_WRITE_ONBD_INPUT_FILE")]
+    WriteInputFile,
+    /// `TRANSFER_TO_HBS`: the inputs cross the serial link to the co-processor.
+    #[serde(rename = "TRANSFER_TO_HBS")]
+    TransferToHbs,
+    /// `RUN_1`: the first localization run.
+    #[serde(rename = "RUN_1")]
+    Run1,
+    /// `REBOOT`: the co-processor reboots between the runs.
+    #[serde(rename = "REBOOT")]
+    Reboot,
+    /// `RUN_2`: the second localization run.
+    #[serde(rename = "RUN_2")]
+    Run2,
+    /// `TRANSFER_TO_RCE`: the two result files come back to the rover computer.
+    #[serde(rename = "TRANSFER_TO_RCE")]
+    TransferToRce,
+    /// `COMPARE`: the rover checks the result checksums and compares the two results.
+    #[serde(rename = "COMPARE")]
+    Compare,
+    /// `MOB_APPLY_ONBD_LOCALIZATION`: the rover applies the result if its validity checks pass.
+    #[serde(rename = "MOB_APPLY_ONBD_LOCALIZATION")]
+    ApplyLocalization,
+}
+
+impl HbsStep {
+    /// The flight-style name (`MOB_WRITE_ONBD_INPUT_FILE`, `TRANSFER_TO_HBS`, `RUN_1`, …).
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            HbsStep::WriteInputFile => "MOB_WRITE_ONBD_INPUT_FILE",
+            HbsStep::TransferToHbs => "TRANSFER_TO_HBS",
+            HbsStep::Run1 => "RUN_1",
+            HbsStep::Reboot => "REBOOT",
+            HbsStep::Run2 => "RUN_2",
+            HbsStep::TransferToRce => "TRANSFER_TO_RCE",
+            HbsStep::Compare => "COMPARE",
+            HbsStep::ApplyLocalization => "MOB_APPLY_ONBD_LOCALIZATION",
+        }
+    }
+}
+
+impl std::fmt::Display for HbsStep {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.pad(self.name())
+    }
+}
+
 /// One step of the activity, for the sol log.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct HbsEvent {
     /// Seconds since the activity started.
     pub t_s: f64,
-    /// Step name: the flight command (`MOB_WRITE_ONBD_INPUT_FILE`, `MOB_APPLY_ONBD_LOCALIZATION`)
-    /// or the HBS step (`TRANSFER_TO_HBS`, `RUN_1`, `REBOOT`, `RUN_2`, `TRANSFER_TO_RCE`,
-    /// `COMPARE`).
-    pub step: &'static str,
+    /// The step: a flight command or a co-processor step.
+    pub step: HbsStep,
     /// What happened.
     pub detail: String,
 }
@@ -176,7 +228,7 @@ pub struct ActivityLog {
 }
 
 impl ActivityLog {
-    fn event(&mut self, step: &'static str, detail: impl Into<String>) {
+    fn event(&mut self, step: HbsStep, detail: impl Into<String>) {
         self.events.push(HbsEvent {
             t_s: self.duration_s,
             step,
@@ -215,12 +267,12 @@ pub fn run_activity(
     };
     let input_bytes: usize = inputs.iter().map(|f| f.bytes.len()).sum();
     log.event(
-        "MOB_WRITE_ONBD_INPUT_FILE",
+        HbsStep::WriteInputFile,
         format!("{} files, {input_bytes} bytes, MD5 recorded", inputs.len()),
     );
     log.duration_s += input_bytes as f64 / params.link_bytes_per_s;
     log.event(
-        "TRANSFER_TO_HBS",
+        HbsStep::TransferToHbs,
         format!("{input_bytes} bytes at {} B/s", params.link_bytes_per_s),
     );
     let mut stored: Vec<HbsFile> = inputs.to_vec();
@@ -229,7 +281,7 @@ pub fn run_activity(
     for run in 1..=2u8 {
         if run == 2 {
             log.duration_s += params.reboot_s;
-            log.event("REBOOT", "HBS rebooted between runs");
+            log.event(HbsStep::Reboot, "HBS rebooted between runs");
         }
         // Storage upsets strike the stored files before this run reads them.
         if rng.random::<f64>() < params.p_flip_storage {
@@ -239,7 +291,11 @@ pub fn run_activity(
                 log.upsets.push(Upset::Storage);
             }
         }
-        let step = if run == 1 { "RUN_1" } else { "RUN_2" };
+        let step = if run == 1 {
+            HbsStep::Run1
+        } else {
+            HbsStep::Run2
+        };
         if let Some(bad) = stored.iter().find(|f| !f.intact()) {
             log.event(
                 step,
@@ -287,32 +343,32 @@ pub fn run_activity(
         }
     }
     log.duration_s += out_bytes as f64 / params.link_bytes_per_s;
-    log.event("TRANSFER_TO_RCE", format!("{out_bytes} bytes"));
+    log.event(HbsStep::TransferToRce, format!("{out_bytes} bytes"));
     for (run, r) in (1u8..).zip(&results) {
         if !r.intact() {
-            log.event("COMPARE", format!("{} failed its MD5 check", r.name));
+            log.event(HbsStep::Compare, format!("{} failed its MD5 check", r.name));
             log.outcome = Err(LossReason::OutputChecksum { run });
             return log;
         }
     }
     if results[0].bytes != results[1].bytes {
-        log.event("COMPARE", "result files differ: not applied");
+        log.event(HbsStep::Compare, "result files differ: not applied");
         log.outcome = Err(LossReason::ResultsDiffer);
         return log;
     }
-    log.event("COMPARE", "result files identical");
+    log.event(HbsStep::Compare, "result files identical");
     let result = results.swap_remove(0).bytes;
     match validate(&result) {
         Ok(()) => {
             log.event(
-                "MOB_APPLY_ONBD_LOCALIZATION",
+                HbsStep::ApplyLocalization,
                 "validity checks passed: applied",
             );
             log.outcome = Ok(result);
         }
         Err(reason) => {
             log.event(
-                "MOB_APPLY_ONBD_LOCALIZATION",
+                HbsStep::ApplyLocalization,
                 format!("validity checks failed: {reason}"),
             );
             log.outcome = Err(LossReason::Invalid { reason });
@@ -419,6 +475,20 @@ mod tests {
         assert_eq!(
             steps,
             [
+                HbsStep::WriteInputFile,
+                HbsStep::TransferToHbs,
+                HbsStep::Run1,
+                HbsStep::Reboot,
+                HbsStep::Run2,
+                HbsStep::TransferToRce,
+                HbsStep::Compare,
+                HbsStep::ApplyLocalization
+            ]
+        );
+        let names: Vec<String> = steps.iter().map(ToString::to_string).collect();
+        assert_eq!(
+            names,
+            [
                 "MOB_WRITE_ONBD_INPUT_FILE",
                 "TRANSFER_TO_HBS",
                 "RUN_1",
@@ -471,7 +541,7 @@ mod tests {
             assert!(
                 !log.events
                     .iter()
-                    .any(|e| e.step == "MOB_APPLY_ONBD_LOCALIZATION")
+                    .any(|e| e.step == HbsStep::ApplyLocalization)
             );
         }
     }

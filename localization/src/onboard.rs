@@ -33,11 +33,11 @@ use rand_chacha::ChaCha8Rng;
 use maps::{GeoTransform, MapLayers, Raster};
 
 use crate::benchmark_set::PATCH_MARGIN_M;
-use crate::hbs::{ActivityLog, HbsFile, HbsParams, run_activity};
+use crate::hbs::{ActivityLog, HbsFile, HbsParams, LossReason, run_activity};
 use crate::matcher::{MatchParams, MatchResult, Method, OrbitalMap, RoverImages, localize};
 use crate::synthetic::{
-    ORTHO_RESOLUTION_M_PER_PX, ORTHO_SIZE_PX, OrbitalParams, RoverImagingParams, render_orbital,
-    render_rover, truth_patch,
+    ORTHO_RESOLUTION_M_PER_PX, ORTHO_SIZE_PX, OrbitalParams, RoverImagingParams, SyntheticError,
+    render_orbital, render_rover, truth_patch,
 };
 
 /// One localization at flight size (240² orthomosaic, ±30 m at 25 cm, DEM, sub-pixel) on the
@@ -123,11 +123,40 @@ pub struct OnboardRun {
     /// The applied position and σ (`None` when lost).
     pub applied: Option<AppliedFix>,
     /// Why the localization was lost (`None` when applied).
-    pub lost_reason: Option<String>,
+    pub lost_reason: Option<LostReason>,
     /// The HBS activity log (steps, upsets, duration); empty when imaging failed.
     pub log: ActivityLog,
     /// Bytes sent to the HBS.
     pub input_bytes: usize,
+}
+
+/// Why an onboard localization was lost (a bad outcome, logged; the rover drives on).
+///
+/// Displayed (and serialised, as a string) as the sol log's sentence, e.g. `no imagery for the
+/// search window: …` or `validity checks failed: REJECTED: ambiguous match: …`.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LostReason {
+    /// The post-drive imagery or the orbital tile could not be rendered for the search window
+    /// (it leaves the map): nothing was sent to the co-processor.
+    NoImagery(SyntheticError),
+    /// The co-processor activity lost it: a checksum, a timeout, the two results differ, or
+    /// the result failed the rover's validity checks.
+    Hbs(LossReason),
+}
+
+impl std::fmt::Display for LostReason {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            LostReason::NoImagery(e) => write!(f, "no imagery for the search window: {e}"),
+            LostReason::Hbs(reason) => reason.fmt(f),
+        }
+    }
+}
+
+impl serde::Serialize for LostReason {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_str(self)
+    }
 }
 
 /// A localization applied by `MOB_APPLY_ONBD_LOCALIZATION`.
@@ -358,7 +387,7 @@ pub fn run_onboard(layers: &MapLayers, req: &OnboardRequest, s: &OnboardSettings
             events: Vec::new(),
             upsets: Vec::new(),
             duration_s: 0.0,
-            outcome: Err(crate::hbs::LossReason::Invalid {
+            outcome: Err(LossReason::Invalid {
                 reason: "not run".into(),
             }),
         },
@@ -384,7 +413,7 @@ pub fn run_onboard(layers: &MapLayers, req: &OnboardRequest, s: &OnboardSettings
     let (orbital, rover) = match rendered {
         Ok(v) => v,
         Err(e) => {
-            run.lost_reason = Some(format!("no imagery for the search window: {e}"));
+            run.lost_reason = Some(LostReason::NoImagery(e));
             return run;
         }
     };
@@ -456,12 +485,14 @@ pub fn run_onboard(layers: &MapLayers, req: &OnboardRequest, s: &OnboardSettings
     run.log = run_activity(&inputs, &hbs, &mut sol_rng, algorithm, |b| {
         check_result(b, max_sigma_m).map(|_| ())
     });
+    // The activity applied the result only after the same check passed, so the second
+    // `check_result` fails only if the two disagree; it is still a lost localization.
     match &run.log.outcome {
         Ok(bytes) => match check_result(bytes, max_sigma_m) {
             Ok(fix) => run.applied = Some(fix),
-            Err(e) => run.lost_reason = Some(e),
+            Err(reason) => run.lost_reason = Some(LostReason::Hbs(LossReason::Invalid { reason })),
         },
-        Err(reason) => run.lost_reason = Some(reason.to_string()),
+        Err(reason) => run.lost_reason = Some(LostReason::Hbs(reason.clone())),
     }
     run
 }
@@ -471,6 +502,7 @@ pub fn run_onboard(layers: &MapLayers, req: &OnboardRequest, s: &OnboardSettings
 mod tests {
     use super::*;
     use crate::benchmark_set::{BenchmarkMaps, TerrainKind};
+    use crate::hbs::HbsStep;
 
     fn request(truth: [f64; 2], prior: [f64; 2], r: f64) -> OnboardRequest {
         OnboardRequest {
@@ -538,8 +570,8 @@ mod tests {
         assert!(err < 1.0, "error {err} m; {run:?}");
         assert_eq!(run.search_radius_m, 30.0);
         let steps: Vec<_> = run.log.events.iter().map(|e| e.step).collect();
-        assert_eq!(steps.first(), Some(&"MOB_WRITE_ONBD_INPUT_FILE"));
-        assert_eq!(steps.last(), Some(&"MOB_APPLY_ONBD_LOCALIZATION"));
+        assert_eq!(steps.first(), Some(&HbsStep::WriteInputFile));
+        assert_eq!(steps.last(), Some(&HbsStep::ApplyLocalization));
         // Flight-size run: the scaled run time is the paper's 32 s, twice, plus link and reboot.
         let link_s = run.input_bytes as f64 / 10_000.0;
         assert!(run.log.duration_s > 2.0 * FLIGHT_RUN_S + 120.0 + link_s - 1e-6);
@@ -591,10 +623,19 @@ mod tests {
             &OnboardSettings::default(),
         );
         assert!(run.applied.is_none());
+        let reason = run.lost_reason.expect("lost");
         assert!(
-            run.lost_reason.as_deref().unwrap().contains("no imagery"),
-            "{:?}",
-            run.lost_reason
+            matches!(
+                reason,
+                LostReason::NoImagery(SyntheticError::PatchOutsideMap { .. })
+            ),
+            "{reason:?}"
+        );
+        assert!(
+            reason
+                .to_string()
+                .starts_with("no imagery for the search window: patch "),
+            "{reason}"
         );
     }
 }

@@ -15,8 +15,8 @@ use crate::autonav::{DriveContext, DriveLimits, RoverParams, RoverState, VoSourc
 use crate::calendar::{Calendar, Planning};
 use crate::localizer::OnboardLocalizer;
 use crate::outcome::{
-    ActivityStep, CampaignOutcome, FaultKind, LegClearance, LocalizationEvent, ScienceTally,
-    SolRecord, Totals,
+    ActivityStep, CampaignOutcome, FaultKind, LegClearance, LocalizationEvent, LocalizationKind,
+    LocalizationStep, ScienceTally, SkipReason, SolRecord, Totals,
 };
 use crate::planning_grid::PlanningGrid;
 use crate::pose::estimate_error_m;
@@ -125,8 +125,8 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
     let mut goal_sol: Option<u32> = None;
     // Per plan: the sols that may drive and why the others may not.
     let mut plan_uplink = cal.sols.first().map_or(0, |s| s.sol);
-    let mut plan_drive: Vec<Option<&'static str>> =
-        vec![Some("no plan uplinked yet"); cal.sols.len()];
+    let mut plan_drive: Vec<Option<SkipReason>> =
+        vec![Some(SkipReason::NoPlanUplinked); cal.sols.len()];
     let mut plan_last_drive: Option<usize> = None;
     let mut planning = Planning::Ground;
     let mut progress = ScienceProgress::default();
@@ -154,7 +154,7 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
                 sols_since_localization = 0;
                 let p = state.estimate.position_m;
                 ground_event = Some(LocalizationEvent {
-                    kind: "ground",
+                    kind: LocalizationKind::Ground,
                     localizer: "ground",
                     applied: true,
                     reason: None,
@@ -168,7 +168,7 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
                     steps: vec![ActivityStep {
                         lmst: None,
                         t_s: 0.0,
-                        step: "MOB_GROUND_LOCALIZED_HERE",
+                        step: LocalizationStep::GroundLocalizedHere,
                         detail: format!("x={:.3} y={:.3}", p.x, p.y),
                     }],
                 });
@@ -178,20 +178,19 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
             plan_drive[idx..idx + decided.reasons.len()].copy_from_slice(&decided.reasons);
         }
 
-        let skip_reason: Option<String> = if goal_sol.is_some() {
-            Some("route complete".into())
+        let skip_reason = if goal_sol.is_some() {
+            Some(SkipReason::RouteComplete)
         } else if !entry.drive_allowed && strategy != Strategy::Replay {
-            Some("no drive in the calendar".into())
+            Some(SkipReason::NoDriveInCalendar)
         } else if halted_by_fault.is_some() {
-            Some("halted after a fault: awaiting ground review".into())
+            Some(SkipReason::HaltedAfterFault)
         } else if let Some(reason) = plan_drive[idx] {
-            Some(reason.into())
+            Some(reason)
         } else if strategy == Strategy::Extension && sols_since_localization >= c.max_extension_sols
         {
-            Some(format!(
-                "extension limit: {} sols without a localization",
-                c.max_extension_sols
-            ))
+            Some(SkipReason::ExtensionLimit {
+                sols_without_localization: c.max_extension_sols,
+            })
         } else {
             None
         };
@@ -339,7 +338,7 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
         );
     }
     CampaignOutcome {
-        strategy: strategy.name().into(),
+        strategy,
         seed: c.seed,
         sols: records,
         totals,
@@ -349,7 +348,7 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
 /// Which sols of a plan may drive: `reasons[k]` is `None` for sol `first + k` if it may, else why
 /// not; `last_drive` is the plan's last drive sol under ground planning.
 struct PlanDrives {
-    reasons: Vec<Option<&'static str>>,
+    reasons: Vec<Option<SkipReason>>,
     last_drive: Option<usize>,
 }
 
@@ -369,7 +368,7 @@ fn plan_drives(
             .iter()
             .map(|e| match e.historic {
                 Some(h) if h.distance_m > 0.0 => None,
-                _ => Some("no drive in the historic record"),
+                _ => Some(SkipReason::NoHistoricDrive),
             })
             .collect();
         return PlanDrives {
@@ -383,12 +382,7 @@ fn plan_drives(
             last_drive: None,
         },
         Planning::Ground if !ground_knows => PlanDrives {
-            reasons: vec![
-                Some(
-                    "rover position not yet known on the ground: awaiting post-drive data"
-                );
-                sols.len()
-            ],
+            reasons: vec![Some(SkipReason::AwaitingPostDriveData); sols.len()],
             last_drive: None,
         },
         Planning::Ground => {
@@ -401,7 +395,7 @@ fn plan_drives(
                     if last_drive.is_some_and(|l| j <= l) {
                         None
                     } else {
-                        Some("post-drive data would not reach Earth in time for the next plan")
+                        Some(SkipReason::DataTooLateForNextPlan)
                     }
                 })
                 .collect();

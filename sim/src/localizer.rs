@@ -21,6 +21,7 @@
 
 use std::sync::Arc;
 
+use crate::outcome::RejectionReason;
 use localization::matcher::Method;
 use localization::onboard::OnboardSettings;
 use maps::MapLayers;
@@ -98,7 +99,7 @@ impl ImageryLocalizer {
 }
 
 /// What one onboard localization run produced.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum LocalizationResult {
     /// Passed the validity checks: the estimate moves to `truth + error_m`.
     Accepted {
@@ -110,7 +111,7 @@ pub enum LocalizationResult {
     /// Failed the validity checks; nothing is applied.
     Rejected {
         /// Why, for the sol log.
-        reason: &'static str,
+        reason: RejectionReason,
     },
 }
 
@@ -144,7 +145,7 @@ impl StatisticalLocalizer {
         let angle: f64 = rng.random::<f64>() * std::f64::consts::TAU;
         if fail < self.failure_rate {
             return LocalizationResult::Rejected {
-                reason: "validity checks failed: ambiguous map match",
+                reason: RejectionReason::ModelledAmbiguousMatch,
             };
         }
         let radius = lambda * (-(1.0 - u).ln()).powf(1.0 / k);

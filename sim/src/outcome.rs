@@ -2,8 +2,19 @@
 //!
 //! Bad outcomes are data, not errors: a `NO_PATH` is a [`Fault`] in the sol record, a rejected
 //! localization is a [`LocalizationEvent`] with `applied = false` and a reason.
+//!
+//! Every kind, reason and step is an enum — [`FaultKind`], [`SkipReason`], [`LocalizationKind`],
+//! [`RejectionReason`], [`LocalizationStep`], the plan's [`crate::sol_plan::SolPlanStatus`] and
+//! the run's [`Strategy`] — matched by variant; the sol log's text is each one's `Display`,
+//! which is also what it serialises to.
 
+use std::fmt;
+
+use localization::hbs::HbsStep;
+use localization::onboard::LostReason;
 use serde::Serialize;
+
+use crate::strategy::Strategy;
 
 /// Kind of drive-ending fault.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -20,6 +31,15 @@ pub enum FaultKind {
 }
 
 impl FaultKind {
+    /// Every fault kind.
+    pub const ALL: [FaultKind; 3] = [FaultKind::NoPath, FaultKind::KeepOut, FaultKind::KeepIn];
+
+    /// The fault kind called `name` (as printed by [`FaultKind::name`]).
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|k| k.name() == name)
+    }
+
     /// The flight-style name (`NO_PATH`, `KEEP_OUT`, `KEEP_IN`).
     #[must_use]
     pub fn name(self) -> &'static str {
@@ -28,6 +48,12 @@ impl FaultKind {
             FaultKind::KeepOut => "KEEP_OUT",
             FaultKind::KeepIn => "KEEP_IN",
         }
+    }
+}
+
+impl fmt::Display for FaultKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.pad(self.name())
     }
 }
 
@@ -44,18 +70,174 @@ pub struct Fault {
     pub position_m: [f64; 2],
 }
 
+/// Who localized the rover: serialised and displayed as `ground` or `onboard`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+pub enum LocalizationKind {
+    /// The mapping specialists on the ground, with the uplink (`MOB_GROUND_LOCALIZED_HERE`).
+    #[serde(rename = "ground")]
+    Ground,
+    /// The rover itself after a drive (the statistical model or image matching on board).
+    #[serde(rename = "onboard")]
+    Onboard,
+}
+
+impl LocalizationKind {
+    /// The name in the sol log: `ground` or `onboard`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            LocalizationKind::Ground => "ground",
+            LocalizationKind::Onboard => "onboard",
+        }
+    }
+}
+
+impl fmt::Display for LocalizationKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.pad(self.name())
+    }
+}
+
+/// Why an onboard localization was not applied. Displayed, and serialised as a string, as the
+/// sol log's sentence (`validity checks failed: …`, `run 1 timed out (HBS stall)`, …).
+#[derive(Clone, Debug, PartialEq)]
+pub enum RejectionReason {
+    /// The statistical localizer's validity checks refused the run (its configured
+    /// `failure_rate`); it models an ambiguous map match:
+    /// `validity checks failed: ambiguous map match`.
+    ModelledAmbiguousMatch,
+    /// The image-matching activity was lost: no imagery for the search window, or the
+    /// co-processor's checksums, timeouts, comparison or the result's validity checks.
+    Onboard(LostReason),
+}
+
+impl fmt::Display for RejectionReason {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            RejectionReason::ModelledAmbiguousMatch => {
+                f.write_str("validity checks failed: ambiguous map match")
+            }
+            RejectionReason::Onboard(reason) => reason.fmt(f),
+        }
+    }
+}
+
+impl Serialize for RejectionReason {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_str(self)
+    }
+}
+
+/// A step of a localization activity: the ground's flight command, or a step of the onboard
+/// activity. Serialised and displayed as its flight-style name ([`LocalizationStep::name`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum LocalizationStep {
+    /// `MOB_GROUND_LOCALIZED_HERE`: the ground's position, sent with the uplink.
+    GroundLocalizedHere,
+    /// A flight command or co-processor step of the onboard activity (paper 000 Fig. 19).
+    Onboard(HbsStep),
+}
+
+impl LocalizationStep {
+    /// The flight-style name (`MOB_GROUND_LOCALIZED_HERE`, `RUN_1`, `COMPARE`, …).
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            LocalizationStep::GroundLocalizedHere => "MOB_GROUND_LOCALIZED_HERE",
+            LocalizationStep::Onboard(step) => step.name(),
+        }
+    }
+}
+
+impl From<HbsStep> for LocalizationStep {
+    fn from(step: HbsStep) -> Self {
+        LocalizationStep::Onboard(step)
+    }
+}
+
+impl fmt::Display for LocalizationStep {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.pad(self.name())
+    }
+}
+
+impl Serialize for LocalizationStep {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.name())
+    }
+}
+
+/// Why a sol did not drive. Displayed, and serialised as a string, as the sol log's sentence
+/// (`route complete`, `extension limit: 3 sols without a localization`, …).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SkipReason {
+    /// The rover already reached the end of the route.
+    RouteComplete,
+    /// The calendar allows no drive this sol.
+    NoDriveInCalendar,
+    /// A fault halted driving until the ground has seen its data.
+    HaltedAfterFault,
+    /// No plan covers this sol yet (before the first uplink).
+    NoPlanUplinked,
+    /// The replay: the historic record has no drive this sol.
+    NoHistoricDrive,
+    /// Ground planning without the last drive's data: the ground does not know where the
+    /// rover is.
+    AwaitingPostDriveData,
+    /// Ground planning: this sol's post-drive data would reach Earth after the next plan is
+    /// made.
+    DataTooLateForNextPlan,
+    /// Extension drives stop after this many sols without a localization.
+    ExtensionLimit {
+        /// Sols driven since the last localization (the scenario's `max_extension_sols`).
+        sols_without_localization: u32,
+    },
+}
+
+impl fmt::Display for SkipReason {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let text = match self {
+            SkipReason::RouteComplete => "route complete",
+            SkipReason::NoDriveInCalendar => "no drive in the calendar",
+            SkipReason::HaltedAfterFault => "halted after a fault: awaiting ground review",
+            SkipReason::NoPlanUplinked => "no plan uplinked yet",
+            SkipReason::NoHistoricDrive => "no drive in the historic record",
+            SkipReason::AwaitingPostDriveData => {
+                "rover position not yet known on the ground: awaiting post-drive data"
+            }
+            SkipReason::DataTooLateForNextPlan => {
+                "post-drive data would not reach Earth in time for the next plan"
+            }
+            SkipReason::ExtensionLimit {
+                sols_without_localization,
+            } => {
+                return f.pad(&format!(
+                    "extension limit: {sols_without_localization} sols without a localization"
+                ));
+            }
+        };
+        f.pad(text)
+    }
+}
+
+impl Serialize for SkipReason {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_str(self)
+    }
+}
+
 /// A localization at the start (ground) or end (onboard) of a sol.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct LocalizationEvent {
-    /// `"ground"` or `"onboard"`.
-    pub kind: &'static str,
+    /// Ground or onboard.
+    pub kind: LocalizationKind,
     /// The localizer: `"ground"` (mapping specialists), or the onboard localizer's name
     /// (`"statistical"`, `"census"`, `"ncc"`, `"mi"`).
     pub localizer: &'static str,
     /// Whether the result was applied to the rover's estimate.
     pub applied: bool,
     /// Why it was not applied (`None` when applied).
-    pub reason: Option<String>,
+    pub reason: Option<RejectionReason>,
     /// Distance from the applied estimate to the truth, metres (`None` when not applied).
     pub error_m: Option<f64>,
     /// Image matching only: distance from the matcher's best estimate to the truth, metres,
@@ -85,8 +267,8 @@ pub struct ActivityStep {
     pub lmst: Option<String>,
     /// Seconds since the activity started.
     pub t_s: f64,
-    /// Command or step name.
-    pub step: &'static str,
+    /// The flight command or co-processor step.
+    pub step: LocalizationStep,
     /// What happened.
     pub detail: String,
 }
@@ -101,7 +283,7 @@ pub struct SolRecord {
     /// Whether the rover was commanded to drive.
     pub drove: bool,
     /// Why it was not commanded to drive (`None` when it drove).
-    pub skip_reason: Option<String>,
+    pub skip_reason: Option<SkipReason>,
     /// Odometry distance driven, metres.
     pub distance_m: f64,
     /// Of which with VO, metres.
@@ -199,8 +381,9 @@ pub struct LegClearance {
 /// One strategy's run over a scenario.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct CampaignOutcome {
-    /// Strategy name (`replay`, `ground`, `onboard`, `extension`, `extension+onboard`).
-    pub strategy: String,
+    /// The strategy (serialised as its name: `replay`, `ground`, `onboard`, `extension`,
+    /// `extension+onboard`).
+    pub strategy: Strategy,
     /// Seed of the run's random stream.
     pub seed: u64,
     /// One record per sol, in order.
@@ -228,5 +411,49 @@ impl CampaignOutcome {
             }
         }
         None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use localization::hbs::LossReason;
+
+    #[test]
+    fn fault_kind_names_round_trip() {
+        for k in FaultKind::ALL {
+            assert_eq!(FaultKind::from_name(k.name()), Some(k));
+            assert_eq!(k.to_string(), k.name());
+        }
+        assert_eq!(FaultKind::from_name("none"), None);
+    }
+
+    #[test]
+    fn outcomes_display_as_the_sol_log_text() {
+        assert_eq!(LocalizationKind::Onboard.to_string(), "onboard");
+        assert_eq!(
+            LocalizationStep::from(HbsStep::Compare).to_string(),
+            "COMPARE"
+        );
+        assert_eq!(
+            format!("{:<12}|", LocalizationStep::GroundLocalizedHere),
+            "MOB_GROUND_LOCALIZED_HERE|"
+        );
+        assert_eq!(format!("{:<8}|", LocalizationKind::Ground), "ground  |");
+        assert_eq!(
+            SkipReason::DataTooLateForNextPlan.to_string(),
+            "post-drive data would not reach Earth in time for the next plan"
+        );
+        assert_eq!(
+            SkipReason::ExtensionLimit {
+                sols_without_localization: 0
+            }
+            .to_string(),
+            "extension limit: 0 sols without a localization"
+        );
+        assert_eq!(
+            RejectionReason::Onboard(LostReason::Hbs(LossReason::ResultsDiffer)).to_string(),
+            "the two result files differ"
+        );
     }
 }

@@ -48,4 +48,4 @@ pub use problem::{
     ChainDurations, LOCALIZATION_CHAIN, SOL_ACTIVITIES, SolPlanRequest, planned_drive_m,
     planning_window, sol_problem,
 };
-pub use record::{SolPlan, TimelineStep};
+pub use record::{SolPlan, SolPlanStatus, TimelineStep};

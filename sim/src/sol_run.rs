@@ -19,7 +19,9 @@ use crate::astar::AStar;
 use crate::autonav::{DriveContext, DriveLimits, DriveResult, RoverState, VoSource, drive_sol};
 use crate::campaign::Campaign;
 use crate::localizer::{ImageryLocalizer, LocalizationResult, OnboardLocalizer};
-use crate::outcome::{ActivityStep, LocalizationEvent};
+use crate::outcome::{
+    ActivityStep, LocalizationEvent, LocalizationKind, LocalizationStep, RejectionReason,
+};
 use crate::pose::estimate_error_m;
 use crate::science::{Reach, ScienceProgress, SolContext};
 use crate::sol_plan::{
@@ -27,6 +29,7 @@ use crate::sol_plan::{
     planned_drive_m, planning_window,
 };
 use crate::time::SolSeconds;
+use localization::hbs::HbsStep;
 
 /// Planned durations of the onboard localization chain: the co-processor model's settings,
 /// with the transfer of a flight-size input set (as measured by `localization::onboard`).
@@ -57,7 +60,7 @@ fn statistical_localization(
     start: SolSeconds,
 ) -> LocalizationEvent {
     let mut event = LocalizationEvent {
-        kind: "onboard",
+        kind: LocalizationKind::Onboard,
         localizer: "statistical",
         applied: false,
         reason: None,
@@ -82,7 +85,7 @@ fn statistical_localization(
             event.error_m = Some(error_m[0].hypot(error_m[1]));
             event.sigma_m = Some(sigma_m);
         }
-        LocalizationResult::Rejected { reason } => event.reason = Some(reason.into()),
+        LocalizationResult::Rejected { reason } => event.reason = Some(reason),
     }
     event.uncertainty_after_m = state.uncertainty.radius_m(&c.model);
     event
@@ -112,10 +115,10 @@ fn imagery_localization(
     let run = run_onboard(&loc.layers, &request, &loc.settings);
     let at = |t_s: f64| SolSeconds(start.0 + t_s.round() as u32).lmst();
     let mut event = LocalizationEvent {
-        kind: "onboard",
+        kind: LocalizationKind::Onboard,
         localizer: loc.settings.matcher.method.name(),
         applied: false,
-        reason: run.lost_reason.clone(),
+        reason: run.lost_reason.clone().map(RejectionReason::Onboard),
         error_m: None,
         matched_error_m: run
             .matched
@@ -133,7 +136,7 @@ fn imagery_localization(
             .map(|e| ActivityStep {
                 lmst: Some(at(e.t_s)),
                 t_s: e.t_s,
-                step: e.step,
+                step: e.step.into(),
                 detail: e.detail.clone(),
             })
             .collect(),
@@ -235,12 +238,12 @@ fn merge(total: &mut DriveResult, mut seg: DriveResult) {
 
 /// The co-processor log step that ends each activity of [`LOCALIZATION_CHAIN`] (SunFind and
 /// the compare-and-apply run on the rover computer, outside the log).
-const LOG_STEP_ENDING: [Option<&str>; LOCALIZATION_CHAIN.len()] = [
+const LOG_STEP_ENDING: [Option<HbsStep>; LOCALIZATION_CHAIN.len()] = [
     None,
-    Some("TRANSFER_TO_HBS"),
-    Some("RUN_1"),
-    Some("REBOOT"),
-    Some("RUN_2"),
+    Some(HbsStep::TransferToHbs),
+    Some(HbsStep::Run1),
+    Some(HbsStep::Reboot),
+    Some(HbsStep::Run2),
     None,
 ];
 
@@ -270,7 +273,13 @@ fn localize(
     // The co-processor log stamps each step when it ends: a step lasts from the previous
     // stamp to its own. The compare and apply on the rover computer follow the transfer back
     // and take the planned time.
-    let at = |name: &str| event.steps.iter().find(|e| e.step == name).map(|e| e.t_s);
+    let at = |step: HbsStep| {
+        event
+            .steps
+            .iter()
+            .find(|e| e.step == LocalizationStep::Onboard(step))
+            .map(|e| e.t_s)
+    };
     let mut previous = 0.0;
     for (d, step) in durations.iter_mut().zip(LOG_STEP_ENDING) {
         if let Some(t) = step.and_then(at) {
@@ -279,10 +288,12 @@ fn localize(
         }
     }
     let ran_both = durations[LOCALIZATION_CHAIN.len() - 2].is_some()
-        && event
-            .steps
-            .iter()
-            .any(|e| e.step == "COMPARE" || e.step == "MOB_APPLY_ONBD_LOCALIZATION");
+        && event.steps.iter().any(|e| {
+            matches!(
+                e.step,
+                LocalizationStep::Onboard(HbsStep::Compare | HbsStep::ApplyLocalization)
+            )
+        });
     if ran_both {
         let last = event.steps.last().map_or(previous, |e| e.t_s);
         durations[LOCALIZATION_CHAIN.len() - 1] =
@@ -397,8 +408,8 @@ fn execute_plan(
                     "localization lost: {}",
                     run.localization
                         .as_ref()
-                        .and_then(|l| l.reason.clone())
-                        .unwrap_or_else(|| "rejected".into())
+                        .and_then(|l| l.reason.as_ref())
+                        .map_or_else(|| "rejected".into(), ToString::to_string)
                 ),
                 cancel: LOCALIZATION_CHAIN[ci + 1..]
                     .iter()

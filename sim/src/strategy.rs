@@ -81,6 +81,12 @@ impl Strategy {
     }
 }
 
+impl std::fmt::Display for Strategy {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.pad(self.name())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -91,5 +97,7 @@ mod tests {
             assert_eq!(Strategy::from_name(s.name()), Some(s));
         }
         assert_eq!(Strategy::from_name("telepathy"), None);
+        // Display is the name, and honours the width of a table column.
+        assert_eq!(format!("{:<10}|", Strategy::Onboard), "onboard   |");
     }
 }

@@ -26,7 +26,7 @@ use serde::Deserialize;
 
 use crate::error::ScenarioError;
 use sim::calendar::Calendar;
-use sim::{CampaignOutcome, Strategy};
+use sim::{CampaignOutcome, FaultKind, Strategy};
 
 /// `[[expect]]` as written.
 #[derive(Debug, Deserialize)]
@@ -80,7 +80,7 @@ struct RawCovers {
 #[derive(Debug, Clone, PartialEq)]
 pub enum Check {
     /// The sol's fault kind (`None` = no fault).
-    Fault(Option<String>),
+    Fault(Option<FaultKind>),
     /// A real quantity of the sol or the run within `[lo, hi]`.
     Range {
         /// Name of the quantity as printed.
@@ -183,10 +183,10 @@ impl RawExpectation {
             ));
         }
         if let Some(fault) = self.fault {
-            let kind = match fault.as_str() {
-                "none" => None,
-                "NO_PATH" | "KEEP_OUT" | "KEEP_IN" => Some(fault.clone()),
-                other => {
+            let kind = match (fault.as_str(), FaultKind::from_name(&fault)) {
+                ("none", _) => None,
+                (_, Some(kind)) => Some(kind),
+                (other, None) => {
                     return Err(ScenarioError::field(
                         path,
                         f("fault"),
@@ -351,14 +351,13 @@ impl Expectation {
         for c in &self.checks {
             match c {
                 Check::Fault(kind) => {
-                    let got = rec
-                        .and_then(|r| r.fault.as_ref())
-                        .map(|f| f.kind.name().to_string());
+                    let got = rec.and_then(|r| r.fault.as_ref()).map(|f| f.kind);
                     if got != *kind {
+                        let name = |k: Option<FaultKind>| k.map_or("none", FaultKind::name).into();
                         out.push(Mismatch {
                             check: label("fault"),
-                            expected: kind.clone().unwrap_or("none".into()),
-                            got: got.unwrap_or("none".into()),
+                            expected: name(*kind),
+                            got: name(got),
                         });
                     }
                 }

@@ -6,7 +6,7 @@ use planner::{
     plan_from, repair, validate_plan,
 };
 
-use super::record::status_name;
+use super::record::SolPlanStatus;
 use super::{SolPlan, SolPlanParams, SolPlanRequest, TimelineStep, sol_problem};
 
 /// The next step of the sol's plan, as the simulator executes it.
@@ -48,7 +48,7 @@ pub struct SolExecution {
     /// The sol's instance; its problem grows when a new goal is injected.
     inst: Instance,
     settings: SearchSettings,
-    status: &'static str,
+    status: SolPlanStatus,
     /// The state before `remaining`.
     state: State,
     remaining: Plan,
@@ -93,7 +93,7 @@ impl SolExecution {
         let mut exec = Self {
             inst,
             settings,
-            status: status_name(outcome.status),
+            status: outcome.status.into(),
             state,
             remaining: outcome.plan,
             rows: Vec::new(),
@@ -310,7 +310,7 @@ impl SolExecution {
                     self.violations.push(format!(
                         "replan at {}: {}",
                         lmst(self.state.time_s),
-                        status_name(o.status)
+                        SolPlanStatus::from(o.status)
                     ));
                 }
                 self.remaining = o.plan;
@@ -347,6 +347,7 @@ mod tests {
     use super::*;
     use crate::science::SolScience;
     use crate::sol_plan::{ChainDurations, LOCALIZATION_CHAIN, planning_window};
+    use crate::time::SolSeconds;
 
     fn at(lmst: &str) -> SolSeconds {
         SolSeconds::parse_lmst(lmst).unwrap_or(SolSeconds(0))
@@ -391,7 +392,7 @@ mod tests {
     fn onboard_sol_has_the_localization_chain_after_the_drive() {
         let p = SolPlanParams::default();
         let plan = run(SolExecution::new(&p, &req(true)).expect("plans"), |_| None);
-        assert_eq!(plan.status, "optimal");
+        assert_eq!(plan.status, SolPlanStatus::Optimal);
         assert!(plan.violations.is_empty(), "{:?}", plan.violations);
         let n = names(&plan);
         let pos = |name: &str| n.iter().position(|a| a.starts_with(name));

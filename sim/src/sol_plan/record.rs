@@ -26,11 +26,68 @@ pub struct TimelineStep {
     pub outcome: Option<String>,
 }
 
+/// How the sol's plan came about: the planner's search status ([`PlanStatus`]), or no plan at
+/// all. Serialised and displayed as `optimal`, `feasible`, `infeasible`, `no plan found` or
+/// `not planned`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize)]
+pub enum SolPlanStatus {
+    /// The search finished: the plan is optimal.
+    #[serde(rename = "optimal")]
+    Optimal,
+    /// The node budget ran out: the plan is feasible.
+    #[serde(rename = "feasible")]
+    Feasible,
+    /// No plan holds every mandatory activity.
+    #[serde(rename = "infeasible")]
+    Infeasible,
+    /// The budget ran out before any plan holding every mandatory activity was found.
+    #[serde(rename = "no plan found")]
+    NoPlanFound,
+    /// The planner refused the sol's problem (its error is the plan's violation); the sol
+    /// drove its window as commanded.
+    #[default]
+    #[serde(rename = "not planned")]
+    NotPlanned,
+}
+
+impl SolPlanStatus {
+    /// The sol log's name (`optimal`, `feasible`, `infeasible`, `no plan found`,
+    /// `not planned`).
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            SolPlanStatus::Optimal => "optimal",
+            SolPlanStatus::Feasible => "feasible",
+            SolPlanStatus::Infeasible => "infeasible",
+            SolPlanStatus::NoPlanFound => "no plan found",
+            SolPlanStatus::NotPlanned => "not planned",
+        }
+    }
+}
+
+impl From<PlanStatus> for SolPlanStatus {
+    fn from(s: PlanStatus) -> Self {
+        match s {
+            PlanStatus::Optimal => SolPlanStatus::Optimal,
+            PlanStatus::Feasible => SolPlanStatus::Feasible,
+            PlanStatus::Infeasible => SolPlanStatus::Infeasible,
+            PlanStatus::NoPlanFound => SolPlanStatus::NoPlanFound,
+        }
+    }
+}
+
+impl std::fmt::Display for SolPlanStatus {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.pad(self.name())
+    }
+}
+
 /// The sol's plan as executed, with its repairs and replans.
 #[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
 pub struct SolPlan {
-    /// Search result: `optimal`, `feasible` (budget hit), `infeasible` or `no plan found`.
-    pub status: &'static str,
+    /// Search result: `optimal`, `feasible` (budget hit), `infeasible`, `no plan found`, or
+    /// `not planned` (the planner refused the problem).
+    pub status: SolPlanStatus,
     /// The timeline as executed: actual start and end of every activity.
     pub timeline: Vec<TimelineStep>,
     /// Every repair and replan, in order (`HH:MM: drive#1/1 ended at … : 3 later activities
@@ -46,20 +103,10 @@ impl SolPlan {
     #[must_use]
     pub fn not_planned(e: &planner::PlanError) -> Self {
         Self {
-            status: "not planned",
+            status: SolPlanStatus::NotPlanned,
             timeline: Vec::new(),
             changes: Vec::new(),
             violations: vec![format!("planner: {e}")],
         }
-    }
-}
-
-/// The sol log's name of a search status.
-pub(super) fn status_name(s: PlanStatus) -> &'static str {
-    match s {
-        PlanStatus::Optimal => "optimal",
-        PlanStatus::Feasible => "feasible",
-        PlanStatus::Infeasible => "infeasible",
-        PlanStatus::NoPlanFound => "no plan found",
     }
 }
