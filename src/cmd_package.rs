@@ -395,7 +395,7 @@ pub fn run(
     let tile_px = (args.tile_m as f64 / res_m).ceil();
     let block_px = (args.block_m + 2 * MARGIN_M) as f64 / RENDER_RESOLUTION_M;
     let need = tile_px * tile_px + 6.0 * (args.tile_m as f64).powi(2) + 16.0 * block_px * block_px;
-    if !(need <= budget.limit_bytes as f64) {
+    if need.is_nan() || need > budget.limit_bytes as f64 {
         anyhow::bail!(
             "--tile-m: expected tiles that fit the memory budget ({}; --memory-budget-mib), got {} m ({})",
             maps::input_file::human_bytes(budget.limit_bytes),

@@ -53,20 +53,7 @@ fn a_broken_layer_is_named_by_its_key() {
     let dir = tempfile::tempdir().expect("tempdir");
     let png = dir.path().join("appearance.png");
     std::fs::write(&png, b"not a PNG at all").expect("write");
-    let o = validate(|t| {
-        let line = t
-            .lines()
-            .find(|l| l.starts_with("appearance = "))
-            .expect("appearance")
-            .to_string();
-        t.replace(
-            &line,
-            &format!(
-                "appearance = \"{}\"\nresolution_m_per_px = 2.0\norigin_m = [0.0, 1200.0]",
-                png.display()
-            ),
-        )
-    });
+    let o = validate(|t| common::with_png_appearance(&t, &png));
     assert_bad_input(
         &o,
         &[

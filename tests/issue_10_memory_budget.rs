@@ -118,20 +118,7 @@ fn a_46000_px_png_map_layer_is_refused_from_its_header() {
     let dir = tempfile::tempdir().expect("tempdir");
     let png = dir.path().join("appearance.png");
     std::fs::write(&png, huge_png(46_000)).expect("write");
-    let (path, _d) = scenario_copy("sol383-386.toml", |t| {
-        let line = t
-            .lines()
-            .find(|l| l.starts_with("appearance = "))
-            .expect("appearance line")
-            .to_string();
-        t.replace(
-            &line,
-            &format!(
-                "appearance = \"{}\"\nresolution_m_per_px = 2.0\norigin_m = [0.0, 1200.0]",
-                png.display()
-            ),
-        )
-    });
+    let (path, _d) = scenario_copy("sol383-386.toml", |t| common::with_png_appearance(&t, &png));
     let o = output_within(solsim().arg("validate").arg(&path), LIMIT);
     assert_bad_input(
         &o,

@@ -15,29 +15,13 @@
 
 mod common;
 
-use common::{root, solsim, stderr};
+use common::{manifest, package, root, stderr};
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
 use maps::package::distance_to_route_m;
 use maps::raster_io::{read_dem, read_png};
 use maps::{GeoTransform, Raster};
-
-fn package(scenario: &Path, out: &Path, extra: &[&str]) -> Output {
-    solsim()
-        .args(["map", "package"])
-        .arg(scenario)
-        .arg("--out")
-        .arg(out)
-        .args(extra)
-        .output()
-        .expect("runs")
-}
-
-fn manifest(out: &Path) -> serde_json::Value {
-    let text = std::fs::read(out.join("manifest.json")).expect("manifest.json is written");
-    serde_json::from_slice(&text).expect("manifest is JSON")
-}
 
 fn f64_at(v: &serde_json::Value) -> f64 {
     v.as_f64().expect("a number")

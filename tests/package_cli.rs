@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{root, solsim, stderr};
+use common::{manifest, package, root, solsim, stderr};
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
@@ -50,22 +50,6 @@ sol = 1
     let path = dir.join("package-test.toml");
     std::fs::write(&path, text).expect("write scenario");
     path
-}
-
-fn package(scenario: &Path, out: &Path, extra: &[&str]) -> Output {
-    solsim()
-        .args(["map", "package"])
-        .arg(scenario)
-        .arg("--out")
-        .arg(out)
-        .args(extra)
-        .output()
-        .expect("runs")
-}
-
-fn manifest(out: &Path) -> serde_json::Value {
-    serde_json::from_slice(&std::fs::read(out.join("manifest.json")).expect("manifest"))
-        .expect("json")
 }
 
 fn geo_of(file: &serde_json::Value) -> GeoTransform {

@@ -18,7 +18,8 @@
 //!   and replans ([`sol_plan::SolExecution`]), every plan validated.
 //! - [`science`]: campaign intents that outlive a sol (goal-set targets on the map, periodic,
 //!   state-based) and the candidates they offer each sol.
-//! - [`campaign`]: the multi-sol runner; [`outcome`]: what it reports.
+//! - [`campaign`]: the multi-sol runner; [`outcome`]: what it reports; [`campaign_error`]:
+//!   [`Campaign::validate`] for campaigns built in code.
 //! - [`seeds`]: the one derivation of every random stream from (scenario seed, purpose, run).
 //!
 //! ```
@@ -38,6 +39,7 @@ pub mod astar;
 pub mod autonav;
 pub mod calendar;
 pub mod campaign;
+pub mod campaign_error;
 pub mod edt;
 pub mod localizer;
 pub mod outcome;
@@ -55,6 +57,7 @@ pub mod widest_path;
 pub use autonav::RoverParams;
 pub use calendar::{Calendar, SolEntry};
 pub use campaign::{Campaign, run_campaign};
+pub use campaign_error::CampaignError;
 pub use outcome::{CampaignOutcome, Fault, FaultKind, SolRecord, Totals};
 pub use planning_grid::PlanningGrid;
 pub use strategy::Strategy;

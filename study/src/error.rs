@@ -51,6 +51,15 @@ pub enum ScenarioError {
         /// What went wrong with the raster.
         source: Box<maps::RasterError>,
     },
+    /// The campaign built from a valid file failed the simulator's own checks (a bug in the
+    /// loader if it ever shows: every field is checked before).
+    #[error("{}: {source}", path.display())]
+    Campaign {
+        /// The scenario file.
+        path: PathBuf,
+        /// What the simulator refused.
+        source: sim::CampaignError,
+    },
     /// The zones file referenced by the scenario could not be loaded.
     #[error("{}: map.zones: {source}", path.display())]
     Zones {

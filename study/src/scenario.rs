@@ -149,6 +149,14 @@ pub enum LocalizerSpec {
     },
 }
 
+/// One item of a scenario's memory budget: the field it comes from, its bytes, and for a
+/// raster the file and header (to name it in the error).
+type BudgetItem<'a> = (
+    &'a str,
+    u64,
+    Option<(&'a Path, maps::raster_io::RasterHeader)>,
+);
+
 /// A validated scenario, ready to run.
 #[derive(Debug)]
 pub struct Scenario {
@@ -485,11 +493,16 @@ impl ScenarioSpec {
         let mut has_history = false;
         for (i, s) in raw.sols.iter().enumerate() {
             let f = |name: &str| format!("sols[{i}].{name}");
-            if i > 0 && s.sol != raw.sols[i - 1].sol + 1 {
+            // In u64: the sol before may be u32::MAX.
+            let next_sol = i.checked_sub(1).map(|p| u64::from(raw.sols[p].sol) + 1);
+            if next_sol.is_some_and(|next| u64::from(s.sol) != next) {
                 return Err(ScenarioError::field(
                     path,
                     f("sol"),
-                    format!("sol {} (sols are consecutive)", raw.sols[i - 1].sol + 1),
+                    format!(
+                        "sol {} (sols are consecutive)",
+                        next_sol.unwrap_or_default()
+                    ),
                     s.sol,
                 ));
             }
@@ -797,8 +810,7 @@ impl Scenario {
         // buffer and its slope layer), one planning grid, and one search per thread of the pool
         // that runs the strategies (grid size from the DEM's extent). Over the budget, the
         // largest item is named.
-        let mut items: Vec<(&str, u64, Option<(&Path, maps::raster_io::RasterHeader)>)> =
-            Vec::new();
+        let mut items: Vec<BudgetItem<'_>> = Vec::new();
         let mut dem_extent_m = None;
         for (field, p, bytes_per_px) in [
             ("map.appearance", &m.appearance, 1),
@@ -932,6 +944,12 @@ impl Scenario {
             },
             science: spec.science,
         };
+        campaign
+            .validate()
+            .map_err(|source| ScenarioError::Campaign {
+                path: path.to_path_buf(),
+                source,
+            })?;
         let legs = campaign::leg_clearances(&campaign);
         Ok(Scenario {
             path: spec.path,

@@ -80,3 +80,44 @@ pub fn output_within(cmd: &mut Command, limit: Duration) -> Output {
         std::thread::sleep(Duration::from_millis(20));
     }
 }
+
+/// `text` with its line starting `prefix` replaced by `new` (the line must exist).
+pub fn replace_line(text: &str, prefix: &str, new: &str) -> String {
+    let line = text
+        .lines()
+        .find(|l| l.starts_with(prefix))
+        .unwrap_or_else(|| panic!("no line starting {prefix:?}"))
+        .to_string();
+    text.replace(&line, new)
+}
+
+/// A scenario's `[map]` with `png` as its appearance layer, placed as the bundled crater-floor
+/// map (2 m pixels from the north-west corner (0, 1200)).
+pub fn with_png_appearance(text: &str, png: &std::path::Path) -> String {
+    replace_line(
+        text,
+        "appearance = ",
+        &format!(
+            "appearance = \"{}\"\nresolution_m_per_px = 2.0\norigin_m = [0.0, 1200.0]",
+            png.display()
+        ),
+    )
+}
+
+/// Runs `solsim map package SCENARIO --out OUT EXTRA…`.
+pub fn package(scenario: &std::path::Path, out: &std::path::Path, extra: &[&str]) -> Output {
+    solsim()
+        .args(["map", "package"])
+        .arg(scenario)
+        .arg("--out")
+        .arg(out)
+        .args(extra)
+        .output()
+        .expect("runs")
+}
+
+/// A map package's manifest.json.
+pub fn manifest(out: &std::path::Path) -> serde_json::Value {
+    serde_json::from_slice(&std::fs::read(out.join("manifest.json")).expect("manifest"))
+        .expect("json")
+}

@@ -1,0 +1,199 @@
+//! What makes a hand-built [`Campaign`] unusable, checked by [`Campaign::validate`].
+//!
+//! A campaign loaded from a scenario file is validated field by field by the `study` crate,
+//! which names the file and the TOML field. A library user who builds a `Campaign` in code gets
+//! the same guarantees from [`Campaign::validate`], so the runner never meets a route off its
+//! grid, a calendar with gaps, a drive window that ends before it starts or a NaN rate.
+
+use crate::campaign::Campaign;
+use crate::time::SOL_S;
+
+/// Why a [`Campaign`] cannot be run.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum CampaignError {
+    /// Fewer than two waypoints (a start and a goal).
+    #[error("route: expected at least two waypoints (a start and a goal), got {waypoints}")]
+    RouteTooShort {
+        /// How many there are.
+        waypoints: usize,
+    },
+    /// A waypoint outside the planning grid (or not finite).
+    #[error("route[{index}]: expected a point on the planning grid, got [{}, {}]", position_m[0], position_m[1])]
+    WaypointOffGrid {
+        /// Index in the route.
+        index: usize,
+        /// The waypoint, map metres.
+        position_m: [f64; 2],
+    },
+    /// No sols.
+    #[error("calendar: expected at least one sol, got none")]
+    EmptyCalendar,
+    /// Sols must follow each other, one per entry.
+    #[error("calendar.sols[{index}]: expected sol {expected} (sols are consecutive), got {found}")]
+    SolsNotConsecutive {
+        /// Index in the calendar.
+        index: usize,
+        /// The sol that should be there.
+        expected: u32,
+        /// The sol that is.
+        found: u32,
+    },
+    /// The first sol must start a plan.
+    #[error("calendar.sols[0]: expected an uplink (the first sol starts a plan)")]
+    FirstSolWithoutUplink,
+    /// The drive window is empty or leaves the sol.
+    #[error(
+        "calendar: expected a drive window inside the sol with its end after its start, got {start_s} s to {end_s} s"
+    )]
+    DriveWindow {
+        /// Start, s after local midnight.
+        start_s: u32,
+        /// End, s after local midnight.
+        end_s: u32,
+    },
+    /// A numeric parameter outside its range.
+    #[error("{name}: expected {expected}, got {value}")]
+    Parameter {
+        /// The parameter, e.g. `rover.step_m`.
+        name: &'static str,
+        /// Its value.
+        value: f64,
+        /// What is allowed.
+        expected: &'static str,
+    },
+    /// A planning-grid layer of the wrong length.
+    #[error("grid.{layer}: expected {cells} cells (width × height), got {len}")]
+    GridLayer {
+        /// The layer.
+        layer: &'static str,
+        /// Its length.
+        len: usize,
+        /// Width × height.
+        cells: usize,
+    },
+}
+
+impl Campaign {
+    /// Checks that the campaign can be run: the route on the grid, consecutive sols with an
+    /// uplink first, a drive window inside the sol, finite positive rates and steps,
+    /// probabilities within 0..1, non-negative uncertainty coefficients and margins, and grid
+    /// layers of the grid's size.
+    ///
+    /// # Errors
+    /// The first [`CampaignError`] found.
+    pub fn validate(&self) -> Result<(), CampaignError> {
+        let g = &self.grid;
+        let cells = g.width * g.height;
+        for (layer, len) in [
+            ("clearance_m", g.clearance_m.len()),
+            ("keep_out_clearance_m", g.keep_out_clearance_m.len()),
+            ("keep_in_clearance_m", g.keep_in_clearance_m.len()),
+            ("hazard", g.hazard.len()),
+            ("terrain", g.terrain.len()),
+        ] {
+            if len != cells {
+                return Err(CampaignError::GridLayer { layer, len, cells });
+            }
+        }
+        if self.route.len() < 2 {
+            return Err(CampaignError::RouteTooShort {
+                waypoints: self.route.len(),
+            });
+        }
+        for (index, &p) in self.route.iter().enumerate() {
+            if !(p[0].is_finite() && p[1].is_finite()) || g.cell_of(p).is_none() {
+                return Err(CampaignError::WaypointOffGrid {
+                    index,
+                    position_m: p,
+                });
+            }
+        }
+        let cal = &self.calendar;
+        let Some(first) = cal.sols.first() else {
+            return Err(CampaignError::EmptyCalendar);
+        };
+        if !first.uplink {
+            return Err(CampaignError::FirstSolWithoutUplink);
+        }
+        for (index, w) in cal.sols.windows(2).enumerate() {
+            if w[1].sol != w[0].sol.wrapping_add(1) {
+                return Err(CampaignError::SolsNotConsecutive {
+                    index: index + 1,
+                    expected: w[0].sol.wrapping_add(1),
+                    found: w[1].sol,
+                });
+            }
+        }
+        if cal.drive_end <= cal.drive_start || cal.drive_end.0 > SOL_S {
+            return Err(CampaignError::DriveWindow {
+                start_s: cal.drive_start.0,
+                end_s: cal.drive_end.0,
+            });
+        }
+        let r = &self.rover;
+        let positive = [
+            ("rover.drive_rate_m_per_h", r.drive_rate_m_per_h),
+            ("rover.step_m", r.step_m),
+            ("rover.waypoint_tolerance_m", r.waypoint_tolerance_m),
+        ];
+        for (name, value) in positive {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(CampaignError::Parameter {
+                    name,
+                    value,
+                    expected: "a finite positive number",
+                });
+            }
+        }
+        let fractions = [
+            ("rover.vo_success.sand", r.vo_success.sand),
+            ("rover.vo_success.soil", r.vo_success.soil),
+            ("rover.vo_success.bedrock", r.vo_success.bedrock),
+            ("rover.slip_fraction.sand", r.slip_fraction.sand),
+            ("rover.slip_fraction.soil", r.slip_fraction.soil),
+            ("rover.slip_fraction.bedrock", r.slip_fraction.bedrock),
+            ("rover.vo_noise_fraction", r.vo_noise_fraction),
+        ];
+        for (name, value) in fractions {
+            if !(0.0..=1.0).contains(&value) {
+                return Err(CampaignError::Parameter {
+                    name,
+                    value,
+                    expected: "a fraction between 0 and 1",
+                });
+            }
+        }
+        let non_negative = [
+            ("rover.heading_sigma_deg", r.heading_sigma_deg),
+            ("rover.edge_buffer_m", r.edge_buffer_m),
+            ("model.k_vo", self.model.k_vo),
+            ("model.k_novo", self.model.k_novo),
+            ("model.initial_margin_m", self.model.initial_margin_m),
+            ("operator_margin_m", self.operator_margin_m),
+        ];
+        for (name, value) in non_negative {
+            if !(value.is_finite() && value >= 0.0) {
+                return Err(CampaignError::Parameter {
+                    name,
+                    value,
+                    expected: "a finite non-negative number",
+                });
+            }
+        }
+        let costs = [
+            ("rover.terrain_cost.sand", r.terrain_cost.sand),
+            ("rover.terrain_cost.soil", r.terrain_cost.soil),
+            ("rover.terrain_cost.bedrock", r.terrain_cost.bedrock),
+        ];
+        for (name, value) in costs {
+            if !(value.is_finite() && value >= 1.0) {
+                return Err(CampaignError::Parameter {
+                    name,
+                    value,
+                    expected: "a cost multiplier ≥ 1",
+                });
+            }
+        }
+        Ok(())
+    }
+}
