@@ -41,10 +41,11 @@
 //!   (a height exactly at the datum is stored as 1 cm);
 //! - `manifest.json`: georeference (map metres, x east, y north; each tile's north-west
 //!   corner), corridor, route, datum, sizes, pixel counts and the MD5 of every PNG, and the
-//!   render seeds and parameters. Written last: a package is complete when its manifest is
-//!   there and every MD5 matches. Every file is written atomically (temporary file, then
-//!   rename). Tiles of an earlier package in the same directory that the manifest does not list
-//!   are left alone.
+//!   render seeds and parameters.
+//!
+//! The package is an [`OutputSet`]: written into a staging directory and swapped into place
+//! whole, so DIR holds an earlier package or this one, never a mix, and no tile of an earlier
+//! package is left beside a new manifest. DIR must be new, empty or an earlier solsim output.
 //!
 //! PNG, because no lossless JPEG-XL encoder is in the dependency set (the paper's JPEG-XL is
 //! "typically half the size of PNG").
@@ -65,7 +66,7 @@ use maps::raster_io::encode_png;
 use maps::{GeoTransform, MapLayers, Raster};
 use sim::seeds::{Purpose, stream_seed};
 
-use crate::report::write_atomic;
+use crate::output_set::OutputSet;
 use study::Scenario;
 
 /// Side of a render block, metres: small enough that blocks follow the corridor closely, large
@@ -339,10 +340,13 @@ fn hex(bytes: &[u8]) -> String {
     })
 }
 
-/// Writes `bytes` to `dir/name` atomically and describes it.
-fn write_file(dir: &Path, name: String, bytes: Vec<u8>) -> anyhow::Result<(String, u64, String)> {
-    let path = dir.join(&name);
-    write_atomic(&path, &bytes).with_context(|| format!("{}: cannot write", path.display()))?;
+/// Writes `bytes` as `name` into the package's output set and describes it.
+fn write_file(
+    set: &OutputSet,
+    name: String,
+    bytes: Vec<u8>,
+) -> anyhow::Result<(String, u64, String)> {
+    set.write(&name, &bytes)?;
     let len = bytes.len() as u64;
     let md5 = hex(&HbsFile::new(name.clone(), bytes).md5);
     Ok((name, len, md5))
@@ -405,17 +409,9 @@ pub fn run(
     }
     let scenario = Scenario::load_within(&args.scenario, budget)?;
     let layers = &*scenario.layers;
-    std::fs::create_dir_all(&args.out).with_context(|| {
-        format!(
-            "{}: cannot create the package directory",
-            args.out.display()
-        )
-    })?;
-    // Fail before rendering if the directory cannot take files.
-    let probe = args.out.join(".solsim-package-probe");
-    write_atomic(&probe, b"")
-        .with_context(|| format!("{}: cannot write in the directory", args.out.display()))?;
-    let _ = std::fs::remove_file(&probe);
+    // The package is written aside and swapped into place whole (fails before rendering if
+    // the directory cannot take it).
+    let set = OutputSet::begin(&args.out)?;
 
     let route = &scenario.campaign.route;
     let layout = CorridorLayout::new(
@@ -455,13 +451,13 @@ pub fn run(
                 }
             };
         let appearance = describe(
-            write_file(&args.out, app_name, app_bytes)?,
+            write_file(&set, app_name, app_bytes)?,
             rasters.appearance.geo,
             [rasters.appearance.width, rasters.appearance.height],
             rasters.kept_px[0],
         );
         let dem = describe(
-            write_file(&args.out, dem_name, dem_bytes)?,
+            write_file(&set, dem_name, dem_bytes)?,
             rasters.dem_cm.geo,
             [rasters.dem_cm.width, rasters.dem_cm.height],
             rasters.kept_px[1],
@@ -522,9 +518,8 @@ pub fn run(
         },
     });
     let text = format!("{}\n", serde_json::to_string_pretty(&manifest)?);
-    let manifest_path = args.out.join(MANIFEST_FILE);
-    write_atomic(&manifest_path, text.as_bytes())
-        .with_context(|| format!("{}: cannot write", manifest_path.display()))?;
+    set.write(MANIFEST_FILE, text.as_bytes())?;
+    set.commit()?;
     let summary = PackageSummary {
         corridor_km2,
         kept_px,

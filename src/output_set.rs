@@ -84,10 +84,8 @@ impl OutputSet {
             staging,
             committed: false,
         };
-        set.write(
-            MARKER_FILE,
-            b"solsim output set: replaced whole by each run\n",
-        )?;
+        // Empty: a set's bytes on disk are its outputs'.
+        set.write(MARKER_FILE, b"")?;
         Ok(set)
     }
 
