@@ -48,7 +48,7 @@ fn plan_json() -> Value {
 }
 
 fn lmst_s(text: &str) -> i64 {
-    i64::from(SolSeconds::parse_lmst(text).expect("LMST").0)
+    SolSeconds::parse_lmst(text).expect("LMST").planner_s()
 }
 
 fn steps(doc: &Value) -> &Vec<Value> {

@@ -69,7 +69,7 @@ fn every_drive_sol_of_the_rapid_traverse_has_a_valid_plan_with_the_chain_under_o
             let d = &plan.timeline[drive];
             assert!(
                 ((d.end_s - d.start_s) as f64 - sol.drive_time_s).abs() <= 1.0,
-                "sol {}: drive {}..{} vs {} s",
+                "sol {}: drive {:?}..{:?} vs {} s",
                 sol.sol,
                 d.start_s,
                 d.end_s,
@@ -109,7 +109,7 @@ fn every_drive_sol_of_the_rapid_traverse_has_a_valid_plan_with_the_chain_under_o
 fn the_self_reliant_campaign_executes_science_and_replans() {
     let s = scenario("self-reliant-campaign.toml");
     let runs = compare(&s, &[Strategy::Ground, Strategy::Onboard]);
-    let lmst = |t: &str| i64::from(sim::time::SolSeconds::parse_lmst(t).expect("lmst").0);
+    let lmst = |t: &str| sim::time::SolSeconds::parse_lmst(t).expect("lmst");
     let (first_due, period, tol) = (lmst("09:30"), 3 * 3600, 20 * 60);
     for (strategy, outcome) in &runs {
         for sol in outcome.sols.iter().filter(|r| r.drove) {
@@ -134,7 +134,7 @@ fn the_self_reliant_campaign_executes_science_and_replans() {
                     .parse()
                     .expect("instance number");
                 let due = first_due + k * period;
-                assert!((step.start_s - due).abs() <= tol, "{step:?} due {due}");
+                assert!((step.start_s - due).abs() <= tol, "{step:?} due {due:?}");
             }
             // A survey runs between two drive segments on every sol that drives a full one.
             let is_drive = |i: usize| t.get(i).is_some_and(|x| x.activity.starts_with("drive#"));

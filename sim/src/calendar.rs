@@ -85,8 +85,8 @@ impl Calendar {
 
     /// Length of the drive window, seconds.
     #[must_use]
-    pub fn drive_window_s(&self) -> u32 {
-        self.drive_end.0.saturating_sub(self.drive_start.0)
+    pub fn drive_window_s(&self) -> i64 {
+        (self.drive_end - self.drive_start).max(0)
     }
 }
 

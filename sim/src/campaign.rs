@@ -223,17 +223,17 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
         };
 
         if record.drove {
-            let mut end = cal.drive_end.0;
+            let mut end = cal.drive_end;
             // The ground's next plan needs this sol's panorama from the afternoon pass.
             let panorama_on_pass = planning == Planning::Ground
                 && entry.downlink_lmst.is_some()
                 && plan_last_drive == Some(idx);
             if let (true, Some(pass)) = (panorama_on_pass, entry.downlink_lmst) {
-                end = end.min(pass.0.saturating_sub(c.post_drive_imaging_s));
+                end = end.min((pass - i64::from(c.post_drive_imaging_s)).max(SolSeconds::MIDNIGHT));
             }
             let window = DriveLimits {
                 max_distance_m: None,
-                max_time_s: Some(f64::from(end.saturating_sub(cal.drive_start.0))),
+                max_time_s: Some((end - cal.drive_start).max(0) as f64),
             };
             let (limits, vo) = match (strategy, entry.historic) {
                 // A historic fault must emerge from the geometry: drive the window, not the record.
@@ -266,7 +266,7 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
             };
             let request = SolPlanRequest {
                 drive_start: cal.drive_start,
-                drive_end: SolSeconds(end.max(cal.drive_start.0)),
+                drive_end: end.max(cal.drive_start),
                 drive_rate_m_per_h: c.rover.drive_rate_m_per_h,
                 downlink: entry.downlink_lmst,
                 panorama_on_pass,

@@ -6,7 +6,7 @@
 //! grid, a calendar with gaps, a drive window that ends before it starts or a NaN rate.
 
 use crate::campaign::Campaign;
-use crate::time::SOL_S;
+use crate::time::SolSeconds;
 
 /// Why a [`Campaign`] cannot be run.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -43,13 +43,15 @@ pub enum CampaignError {
     FirstSolWithoutUplink,
     /// The drive window is empty or leaves the sol.
     #[error(
-        "calendar: expected a drive window inside the sol with its end after its start, got {start_s} s to {end_s} s"
+        "calendar: expected a drive window inside the sol with its end after its start, got {} s to {} s",
+        .start.0,
+        .end.0
     )]
     DriveWindow {
-        /// Start, s after local midnight.
-        start_s: u32,
-        /// End, s after local midnight.
-        end_s: u32,
+        /// Start.
+        start: SolSeconds,
+        /// End.
+        end: SolSeconds,
     },
     /// A numeric parameter outside its range.
     #[error("{name}: expected {expected}, got {value}")]
@@ -124,10 +126,13 @@ impl Campaign {
                 });
             }
         }
-        if cal.drive_end <= cal.drive_start || cal.drive_end.0 > SOL_S {
+        if cal.drive_start < SolSeconds::MIDNIGHT
+            || cal.drive_end <= cal.drive_start
+            || cal.drive_end > SolSeconds::END_OF_SOL
+        {
             return Err(CampaignError::DriveWindow {
-                start_s: cal.drive_start.0,
-                end_s: cal.drive_end.0,
+                start: cal.drive_start,
+                end: cal.drive_end,
             });
         }
         let r = &self.rover;

@@ -129,14 +129,14 @@ pub struct SolScience {
 pub struct SolContext {
     /// The sol number.
     pub sol: u32,
-    /// The planning window `[start, end]`, s after midnight.
-    pub window_s: [i64; 2],
-    /// The drive's first segment start, s after midnight.
-    pub drive_start_s: i64,
+    /// The planning window `[start, end]`.
+    pub window: [SolSeconds; 2],
+    /// The drive's first segment start.
+    pub drive_start: SolSeconds,
     /// Metres the drive is planned to cover.
     pub drive_m: f64,
-    /// When the activities before the drive (heating) begin, s after midnight.
-    pub before_drive_s: i64,
+    /// When the activities before the drive (heating) begin.
+    pub before_drive: SolSeconds,
 }
 
 /// How a target relates to the rover now: observable already, after the drive, or not.
@@ -176,9 +176,9 @@ impl Target {
 
     /// Whether it is revealed by `(sol, t)`.
     #[must_use]
-    pub fn revealed_by(&self, sol: u32, t_s: i64) -> bool {
+    pub fn revealed_by(&self, sol: u32, t: SolSeconds) -> bool {
         self.revealed
-            .is_none_or(|(s, at)| s < sol || (s == sol && i64::from(at.0) <= t_s))
+            .is_none_or(|(s, at)| s < sol || (s == sol && at <= t))
     }
 
     /// Its reach along `route_ahead` (the rover's estimate, then the waypoints still to
@@ -202,23 +202,23 @@ impl Target {
         }
     }
 
-    /// The sol's candidate activity for this target, startable in `window_s` (`None` if it
+    /// The sol's candidate activity for this target, startable in `window` (`None` if it
     /// is out of reach). In reach after the drive: the drive is its precondition. In reach
-    /// now but not after the drive: it must end by `before_drive_s`, when the activities
+    /// now but not after the drive: it must end by `before_drive`, when the activities
     /// before the drive begin (`None`: no time before the drive is left, so no candidate).
     #[must_use]
     pub fn candidate(
         &self,
         goal_set: &str,
-        window_s: [i64; 2],
+        window: [SolSeconds; 2],
         route_ahead: &[[f64; 2]],
         drive_left_m: f64,
-        before_drive_s: Option<i64>,
+        before_drive: Option<SolSeconds>,
     ) -> Option<Activity> {
         let mut a = self.activity.clone();
         a.campaign = Some(goal_set.to_string());
-        a.earliest_start_s = window_s[0];
-        a.latest_start_s = window_s[1] - a.duration_s();
+        a.earliest_start_s = window[0].planner_s();
+        a.latest_start_s = window[1].planner_s() - a.duration_s();
         match self.reach(route_ahead, drive_left_m) {
             Reach::Here => {
                 let end = point_along(route_ahead, drive_left_m);
@@ -226,7 +226,9 @@ impl Target {
                     || (self.position_m[0] - end[0]).hypot(self.position_m[1] - end[1])
                         <= self.within_m;
                 if !stays {
-                    a.latest_start_s = a.latest_start_s.min(before_drive_s? - a.duration_s());
+                    a.latest_start_s = a
+                        .latest_start_s
+                        .min(before_drive?.planner_s() - a.duration_s());
                 }
             }
             Reach::AfterDrive => a.preconditions.push("drive".into()),
@@ -323,22 +325,22 @@ impl Science {
         route_ahead: &[[f64; 2]],
     ) -> SolScience {
         let mut out = SolScience::default();
-        let [start_s, end_s] = ctx.window_s;
+        let [start, end] = ctx.window;
+        let (start_s, end_s) = (start.planner_s(), end.planner_s());
         if let Some(gs) = &self.goal_set
             && let Some(offered) = self.offered_goal_set(progress)
         {
             let before = out.activities.len();
             for t in &self.targets {
-                if progress.achieved.iter().any(|a| a == t.id()) || !t.revealed_by(ctx.sol, start_s)
-                {
+                if progress.achieved.iter().any(|a| a == t.id()) || !t.revealed_by(ctx.sol, start) {
                     continue;
                 }
                 out.activities.extend(t.candidate(
                     &gs.id,
-                    ctx.window_s,
+                    ctx.window,
                     route_ahead,
                     ctx.drive_m,
-                    Some(ctx.before_drive_s),
+                    Some(ctx.before_drive),
                 ));
             }
             if out.activities.len() > before {
@@ -358,7 +360,7 @@ impl Science {
                 planner::periodic_instances(
                     &p.template,
                     &p.campaign.id,
-                    i64::from(p.first_due.0),
+                    p.first_due.planner_s(),
                     period_s,
                     tolerance_s,
                     end_s,
@@ -405,7 +407,7 @@ impl Science {
                 let mut a = s.template.clone();
                 a.id = format!("{}-{k}", s.template.id);
                 a.campaign = Some(s.campaign.id.clone());
-                a.earliest_start_s = ctx.drive_start_s;
+                a.earliest_start_s = ctx.drive_start.planner_s();
                 a.latest_start_s = end_s - a.duration_s();
                 a.driven_window_m = Some([(at_m - tolerance_m).max(0.0), at_m + tolerance_m]);
                 if at_m > 1.0 && at_m < ctx.drive_m - 1.0 {
@@ -493,10 +495,10 @@ mod tests {
     fn ctx(sol: u32, drive_m: f64) -> SolContext {
         SolContext {
             sol,
-            window_s: [36_000, 63_000],
-            drive_start_s: 40_000,
+            window: [SolSeconds(36_000), SolSeconds(63_000)],
+            drive_start: SolSeconds(40_000),
             drive_m,
-            before_drive_s: 38_200,
+            before_drive: SolSeconds(38_200),
         }
     }
 

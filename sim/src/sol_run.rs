@@ -113,7 +113,7 @@ fn imagery_localization(
         sol_seed,
     };
     let run = run_onboard(&loc.layers, &request, &loc.settings);
-    let at = |t_s: f64| SolSeconds(start.0 + t_s.round() as u32).lmst();
+    let at = |t_s: f64| start.after_s(t_s).lmst();
     let mut event = LocalizationEvent {
         kind: LocalizationKind::Onboard,
         localizer: loc.settings.matcher.method.name(),
@@ -252,11 +252,12 @@ const LOG_STEP_ENDING: [Option<HbsStep>; LOCALIZATION_CHAIN.len()] = [
 fn localize(
     env: &SolEnv<'_>,
     st: &mut SolState<'_>,
-    start_s: i64,
+    start: SolSeconds,
     compare_apply_s: i64,
 ) -> (LocalizationEvent, [Option<i64>; LOCALIZATION_CHAIN.len()]) {
     let c = env.c;
-    let start = SolSeconds(start_s.clamp(0, i64::from(u32::MAX)) as u32);
+    // The co-processor log is stamped from midnight at the earliest.
+    let start = start.max(SolSeconds::MIDNIGHT);
     let event = match &c.localizer {
         OnboardLocalizer::Statistical(model) => {
             statistical_localization(model.localize(st.rng), c, st.rover, start)
@@ -310,15 +311,15 @@ pub(crate) fn execute_sol(
     mut request: SolPlanRequest,
 ) -> SolRun {
     let c = env.c;
-    let window_s = planning_window(&c.sol_plan, request.drive_start, request.drive_end);
+    let window = planning_window(&c.sol_plan, request.drive_start, request.drive_end);
     request.science = c.science.for_sol(
         st.progress,
         &SolContext {
             sol: env.sol,
-            window_s,
-            drive_start_s: i64::from(request.drive_start.0),
+            window,
+            drive_start: request.drive_start,
             drive_m: planned_drive_m(&request),
-            before_drive_s: i64::from(request.drive_start.0) - c.sol_plan.heating_s,
+            before_drive: request.drive_start - c.sol_plan.heating_s,
         },
         &route_ahead(c, st.rover),
     );
@@ -330,17 +331,17 @@ pub(crate) fn execute_sol(
         plan: SolPlan::default(),
         drive_ended: false,
     };
-    let mut now_s = window_s[0];
+    let mut now = window[0];
     match SolExecution::new(&c.sol_plan, &request) {
         Ok(exec) if exec.next_step().is_some() => {
-            now_s = execute_plan(env, st, &mut run, exec, now_s);
+            now = execute_plan(env, st, &mut run, exec, now);
         }
         planned => {
             // No plan (a malformed or infeasible problem; the log says which): drive the
             // window as commanded; the localization follows right after it.
             let r = drive_sol(env.ctx, st.rover, env.limits, env.vo, st.rng, st.astar);
             merge(&mut run.drive, r);
-            now_s = i64::from(request.drive_start.0) + run.drive.drive_time_s.round() as i64;
+            now = request.drive_start.after_s(run.drive.drive_time_s);
             run.plan = match planned {
                 Ok(exec) => exec.finish(),
                 Err(e) => SolPlan::not_planned(&e),
@@ -351,7 +352,7 @@ pub(crate) fn execute_sol(
     if env.onboard && run.localization.is_none() {
         // No plan, or the plan lost the chain (a replan could not fit it): localize when the
         // sol's activities end, as the ground would command it.
-        run.localization = Some(localize(env, st, now_s, c.sol_plan.compare_apply_s).0);
+        run.localization = Some(localize(env, st, now, c.sol_plan.compare_apply_s).0);
     }
     st.progress.odometer_m += run.drive.distance_m;
     run
@@ -363,8 +364,8 @@ fn execute_plan(
     st: &mut SolState<'_>,
     run: &mut SolRun,
     mut exec: SolExecution,
-    mut now_s: i64,
-) -> i64 {
+    mut now: SolSeconds,
+) -> SolSeconds {
     let c = env.c;
     let mut chain_durations = [None; LOCALIZATION_CHAIN.len()];
     let mut considered: Vec<String> = Vec::new();
@@ -372,15 +373,15 @@ fn execute_plan(
         if inject_revealed(env, st, &mut exec, &step, &mut considered) {
             continue;
         }
-        now_s = step.end_s;
+        now = step.end_s;
         let chain_at = LOCALIZATION_CHAIN.iter().position(|&a| a == step.activity);
         if step.activity == "drive" {
-            let (end_s, disruption, outcome) = drive_segment(env, st, run, &step);
-            now_s = end_s;
+            let (end, disruption, outcome) = drive_segment(env, st, run, &step);
+            now = end;
             if disruption.is_some() {
                 run.end_drive(st.rover, &c.model);
             }
-            exec.complete(end_s, outcome, disruption);
+            exec.complete(end, outcome, disruption);
         } else if let Some(ci) = chain_at.filter(|&ci| ci >= 1 && env.onboard) {
             if ci == 1 {
                 run.end_drive(st.rover, &c.model);
@@ -417,7 +418,7 @@ fn execute_plan(
                     .collect(),
                 driven_m: None,
             });
-            now_s = end;
+            now = end;
             exec.complete(end, None, disruption);
         } else {
             let outcome = observe(env, st, &step);
@@ -425,17 +426,17 @@ fn execute_plan(
         }
     }
     run.plan = exec.finish();
-    now_s
+    now
 }
 
-/// Drive one segment: its actual end (s), the disruption if the drive stopped before its
+/// Drive one segment: its actual end, the disruption if the drive stopped before its
 /// last segment, and the outcome note.
 fn drive_segment(
     env: &SolEnv<'_>,
     st: &mut SolState<'_>,
     run: &mut SolRun,
     step: &Step,
-) -> (i64, Option<Disruption>, Option<String>) {
+) -> (SolSeconds, Option<Disruption>, Option<String>) {
     let (j, k) = step.segment.unwrap_or((0, 1));
     let last = j + 1 == k;
     let left_m = env.limits.max_distance_m.map(|m| m - run.drive.distance_m);
@@ -448,7 +449,7 @@ fn drive_segment(
         max_time_s: env.limits.max_time_s.map(|t| t - run.drive.drive_time_s),
     };
     let r = drive_sol(env.ctx, st.rover, limits, env.vo, st.rng, st.astar);
-    let end_s = step.start_s + r.drive_time_s.round() as i64;
+    let end = step.start_s.after_s(r.drive_time_s);
     let short = r.distance_m < step.drive_m - 0.5;
     merge(&mut run.drive, r);
     let d = &run.drive;
@@ -469,7 +470,7 @@ fn drive_segment(
             cancel: vec!["drive".into()],
             driven_m: Some(d.distance_m),
         });
-    (end_s, disruption, note)
+    (end, disruption, note)
 }
 
 /// Run a science observation (or any other activity): targets are judged from the true
@@ -508,7 +509,7 @@ fn inject_revealed(
     let Some(goal_set) = science.offered_goal_set(st.progress) else {
         return false;
     };
-    let window_end = exec.window_s()[1];
+    let window_end = exec.window()[1];
     for t in &science.targets {
         let id = t.id();
         if t.revealed.is_none_or(|(sol, _)| sol != env.sol)

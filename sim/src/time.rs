@@ -1,16 +1,73 @@
 //! Mars time: sols and local mean solar time (LMST).
 //!
-//! A sol is 88,775 s; LMST divides it into 24 "Mars hours" of 3,698.96 s. Times inside a sol are
-//! kept as integer seconds after local midnight ([`SolSeconds`]) so nothing accumulates in `f64`.
+//! A sol is [`SOL_S`] = 88,775 s (the one seconds-per-sol constant); LMST divides it into 24
+//! "Mars hours" of 3,698.96 s.
+//!
+//! # One instant type
+//!
+//! Every instant within a sol in `sim` is a [`SolSeconds`]: **integer** seconds after the sol's
+//! local midnight, so nothing accumulates in `f64`. The calendar's drive window and downlink
+//! pass, the plan's window and wake-up, every plan step's start and end, the sol log's timeline,
+//! a science target's reveal and a periodic campaign's first due time are all `SolSeconds`.
+//! It is signed: a planning window may open before midnight (the heating before a drive that
+//! starts just after 00:00) or close past [`SOL_S`] (four hours after a late drive window), and
+//! the arithmetic stays exact; the LMST reading ([`SolSeconds::lmst`]) clamps at 00:00.
+//!
+//! Durations are not instants: they stay plain integer seconds named `_s` (`heating_s: i64`).
+//! An instant plus a duration is an instant (`t + d`), an instant minus an instant is a duration
+//! (`b - a`), both exact.
+//!
+//! # The planner boundary
+//!
+//! The `planner` crate knows nothing of `sim`: its problems, plans and states carry `i64`
+//! seconds after midnight. Values cross that boundary through one pair of exact conversions,
+//! [`SolSeconds::from_planner_s`] (into `sim`) and [`SolSeconds::planner_s`] (out to the
+//! planner); nothing else reads or builds the raw count. [`lmst_of`] formats a planner time
+//! through the same formatter.
+//!
+//! # What stays `f64`
+//!
+//! Durations *measured* inside an activity are physical, not clock readings: AutoNav's driving
+//! time (each step's commanded length over the drive rate, with the time budget trimming the last
+//! step) and the co-processor model's log (`localization::hbs`: a transfer at a byte rate takes
+//! fractional seconds). They become instants once, rounded to the nearest second, at the step
+//! they end ([`SolSeconds::after_s`]).
+
+use std::ops::{Add, Sub};
 
 /// Length of a sol in SI seconds.
 pub const SOL_S: u32 = 88_775;
 
-/// Seconds after local midnight within one sol (0 ..= 88,775).
+/// An instant within a sol: integer seconds after local midnight (negative before it, beyond
+/// [`SOL_S`] after the sol's end; see the module documentation).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
-pub struct SolSeconds(pub u32);
+pub struct SolSeconds(pub i64);
 
 impl SolSeconds {
+    /// Local midnight at the start of the sol (00:00 LMST).
+    pub const MIDNIGHT: SolSeconds = SolSeconds(0);
+    /// The end of the sol (24:00 LMST).
+    pub const END_OF_SOL: SolSeconds = SolSeconds(SOL_S as i64);
+
+    /// A time of the `planner` crate (`i64` seconds after midnight) as an instant.
+    #[must_use]
+    pub const fn from_planner_s(s: i64) -> Self {
+        SolSeconds(s)
+    }
+
+    /// This instant as the `planner` crate's `i64` seconds after midnight.
+    #[must_use]
+    pub const fn planner_s(self) -> i64 {
+        self.0
+    }
+
+    /// The instant a measured duration of `duration_s` (fractional seconds, e.g. AutoNav's
+    /// driving time) after this one, rounded to the nearest second.
+    #[must_use]
+    pub fn after_s(self, duration_s: f64) -> Self {
+        SolSeconds(self.0 + duration_s.round() as i64)
+    }
+
     /// The time of day for an LMST clock reading `hours:minutes` (a Mars hour is 1/24 sol).
     /// `None` if the reading is outside 00:00 ..= 24:00.
     #[must_use]
@@ -18,8 +75,10 @@ impl SolSeconds {
         if minutes >= 60 || hours > 24 || (hours == 24 && minutes > 0) {
             return None;
         }
-        let fraction = (hours * 60 + minutes) as u64;
-        Some(SolSeconds(((fraction * SOL_S as u64 + 720) / 1440) as u32))
+        let fraction = u64::from(hours * 60 + minutes);
+        Some(SolSeconds(
+            ((fraction * u64::from(SOL_S) + 720) / 1440) as i64,
+        ))
     }
 
     /// Parse `"HH:MM"` LMST.
@@ -32,19 +91,46 @@ impl SolSeconds {
         Self::from_lmst(h.parse().ok()?, m.parse().ok()?)
     }
 
-    /// The LMST clock reading `HH:MM` of this time (rounded to the nearest Mars minute).
+    /// The LMST clock reading `HH:MM` of this time (rounded to the nearest Mars minute; a time
+    /// before midnight reads 00:00, one past the sol's end 24:MM and on): the one formatter of
+    /// plan, sol-log and message times.
     #[must_use]
     pub fn lmst(self) -> String {
-        let minutes = (self.0 as u64 * 1440 + SOL_S as u64 / 2) / SOL_S as u64;
+        let s = self.0.clamp(0, i64::from(u32::MAX)) as u64;
+        let minutes = (s * 1440 + u64::from(SOL_S) / 2) / u64::from(SOL_S);
         format!("{:02}:{:02}", minutes / 60, minutes % 60)
     }
 }
 
-/// The LMST clock reading `HH:MM` of `s` seconds after local midnight (clamped to the sol's
-/// range of [`SolSeconds`]): the one formatter of plan, sol-log and message times.
+impl Add<i64> for SolSeconds {
+    type Output = SolSeconds;
+    /// The instant `duration_s` seconds later.
+    fn add(self, duration_s: i64) -> SolSeconds {
+        SolSeconds(self.0 + duration_s)
+    }
+}
+
+impl Sub<i64> for SolSeconds {
+    type Output = SolSeconds;
+    /// The instant `duration_s` seconds earlier.
+    fn sub(self, duration_s: i64) -> SolSeconds {
+        SolSeconds(self.0 - duration_s)
+    }
+}
+
+impl Sub for SolSeconds {
+    type Output = i64;
+    /// The duration from `earlier` to `self`, s (negative if `earlier` is later).
+    fn sub(self, earlier: SolSeconds) -> i64 {
+        self.0 - earlier.0
+    }
+}
+
+/// The LMST clock reading `HH:MM` of a `planner` time (`i64` seconds after midnight):
+/// `SolSeconds::from_planner_s(s).lmst()`.
 #[must_use]
 pub fn lmst_of(s: i64) -> String {
-    SolSeconds(s.clamp(0, i64::from(u32::MAX)) as u32).lmst()
+    SolSeconds::from_planner_s(s).lmst()
 }
 
 #[cfg(test)]
@@ -54,9 +140,9 @@ mod tests {
     #[test]
     fn lmst_round_trips() {
         assert_eq!(SolSeconds::parse_lmst("00:00"), Some(SolSeconds(0)));
-        assert_eq!(SolSeconds::parse_lmst("24:00"), Some(SolSeconds(SOL_S)));
+        assert_eq!(SolSeconds::parse_lmst("24:00"), Some(SolSeconds::END_OF_SOL));
         let noon = SolSeconds::parse_lmst("12:00").expect("valid");
-        assert_eq!(noon.0, SOL_S / 2 + 1); // 44,387.5 s rounds up
+        assert_eq!(noon.planner_s(), i64::from(SOL_S / 2 + 1)); // 44,387.5 s rounds up
         assert_eq!(noon.lmst(), "12:00");
         assert_eq!(
             SolSeconds::parse_lmst("11:30")
@@ -67,5 +153,28 @@ mod tests {
         assert_eq!(SolSeconds::parse_lmst("25:00"), None);
         assert_eq!(SolSeconds::parse_lmst("12:60"), None);
         assert_eq!(SolSeconds::parse_lmst("noon"), None);
+    }
+
+    #[test]
+    fn planner_times_cross_exactly_and_read_as_lmst() {
+        for s in [
+            -1_800,
+            0,
+            33_291,
+            i64::from(SOL_S),
+            i64::from(SOL_S) + 14_400,
+        ] {
+            assert_eq!(SolSeconds::from_planner_s(s).planner_s(), s);
+            assert_eq!(lmst_of(s), SolSeconds::from_planner_s(s).lmst());
+        }
+        // Before midnight reads 00:00; past the sol's end the clock runs on.
+        assert_eq!(SolSeconds(-1_800).lmst(), "00:00");
+        assert_eq!(SolSeconds::END_OF_SOL.lmst(), "24:00");
+        let start = SolSeconds::parse_lmst("11:30").expect("valid");
+        let end = start + 600;
+        assert_eq!(end - start, 600);
+        assert_eq!(end - 600, start);
+        assert_eq!(start.after_s(599.5), end);
+        assert_eq!(start.after_s(0.4), start);
     }
 }

@@ -353,7 +353,7 @@ mod tests {
         assert_eq!(f.name, "t");
         assert_eq!(
             f.problem.start_s,
-            i64::from(SolSeconds::parse_lmst("09:00").unwrap().0)
+            SolSeconds::parse_lmst("09:00").unwrap().planner_s()
         );
         planner::Instance::new(&f.problem).unwrap();
     }
@@ -415,7 +415,7 @@ mod tests {
         };
         assert_eq!(
             d.latest_end_s,
-            Some(i64::from(SolSeconds::parse_lmst("14:00").unwrap().0))
+            Some(SolSeconds::parse_lmst("14:00").unwrap().planner_s())
         );
         let e = resolve(&drive("2pm")).unwrap_err().to_string();
         assert!(e.contains("activities[0].drive.latest_end_lmst"), "{e}");

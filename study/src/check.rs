@@ -90,9 +90,10 @@ impl Check<'_> {
             )
         })
     }
-    /// [`Check::lmst`] as seconds after local midnight.
+    /// [`Check::lmst`] as the `planner` crate's seconds after local midnight (campaign files
+    /// build planner problems).
     pub(crate) fn lmst_s(&self, field: &str, v: &str) -> Result<i64, ScenarioError> {
-        self.lmst(field, v).map(|s| i64::from(s.0))
+        self.lmst(field, v).map(SolSeconds::planner_s)
     }
     /// Minutes (SI) → whole seconds, > 0.
     pub(crate) fn minutes(&self, field: &str, v: f64) -> Result<i64, ScenarioError> {

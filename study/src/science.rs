@@ -19,9 +19,6 @@ use crate::campaign_file::{campaign, task};
 use crate::check::Check;
 use crate::error::ScenarioError;
 
-/// A whole sol, s: the window the campaign checks run against.
-const SOL_S: i64 = sim::time::SOL_S as i64;
-
 /// Validate `[science]`; `on_map(p)` says whether a position is on the map, `extent` how to
 /// say where the map is.
 ///
@@ -65,10 +62,7 @@ pub fn resolve_science(
         )?;
         let revealed = match (t.revealed_sol, &t.revealed_lmst) {
             (None, None) => None,
-            (Some(sol), Some(lmst)) => Some((
-                sol,
-                SolSeconds(c.lmst_s(&format!("{f}.revealed_lmst"), lmst)? as u32),
-            )),
+            (Some(sol), Some(lmst)) => Some((sol, c.lmst(&format!("{f}.revealed_lmst"), lmst)?)),
             (Some(_), None) => {
                 return Err(c.err(
                     &format!("{f}.revealed_lmst"),
@@ -148,7 +142,11 @@ pub fn resolve_science(
         }
         // The campaign-file checks, over a whole sol and one cadence of driving.
         let one_cadence_m = rc.every_m.unwrap_or(1.0);
-        let (mut campaign, instances) = campaign(&c, &f, rc, (0, SOL_S), one_cadence_m, &targets)?;
+        let whole_sol = (
+            SolSeconds::MIDNIGHT.planner_s(),
+            SolSeconds::END_OF_SOL.planner_s(),
+        );
+        let (mut campaign, instances) = campaign(&c, &f, rc, whole_sol, one_cadence_m, &targets)?;
         match campaign.intent {
             CampaignIntent::GoalSet => {
                 if science.goal_set.is_some() {
@@ -167,11 +165,13 @@ pub fn resolve_science(
                 let first_due = rc
                     .first_due_lmst
                     .as_deref()
-                    .map_or(Ok(0), |t| c.lmst_s(&format!("{f}.first_due_lmst"), t))?;
+                    .map_or(Ok(SolSeconds::MIDNIGHT), |t| {
+                        c.lmst(&format!("{f}.first_due_lmst"), t)
+                    })?;
                 if let Some(template) = template_of(&c, &f, rc, instances)? {
                     science.periodic.push(Periodic {
                         campaign,
-                        first_due: SolSeconds(first_due as u32),
+                        first_due,
                         template,
                     });
                 }

@@ -8,6 +8,7 @@ use planner::{
 
 use super::record::SolPlanStatus;
 use super::{SolPlan, SolPlanParams, SolPlanRequest, TimelineStep, sol_problem};
+use crate::time::SolSeconds;
 
 /// The next step of the sol's plan, as the simulator executes it.
 #[derive(Clone, Debug, PartialEq)]
@@ -16,10 +17,10 @@ pub struct Step {
     pub activity: String,
     /// `(j, k)`: drive segment `j` (0-based) of `k`.
     pub segment: Option<(u32, u32)>,
-    /// Planned start, s after midnight.
-    pub start_s: i64,
-    /// Planned end, s after midnight.
-    pub end_s: i64,
+    /// Planned start.
+    pub start_s: SolSeconds,
+    /// Planned end.
+    pub end_s: SolSeconds,
     /// Metres a drive segment covers (0 for other activities).
     pub drive_m: f64,
 }
@@ -60,18 +61,14 @@ pub struct SolExecution {
 use crate::time::lmst_of as lmst;
 
 /// `"4 min 10 s late (planned 14:05)"`.
-fn slip(actual_s: i64, planned_s: i64) -> String {
-    let d = (actual_s - planned_s).abs();
+fn slip(actual: SolSeconds, planned: SolSeconds) -> String {
+    let d = (actual - planned).abs();
     format!(
         "{} min {} s {} (planned {})",
         d / 60,
         d % 60,
-        if actual_s > planned_s {
-            "late"
-        } else {
-            "early"
-        },
-        lmst(planned_s)
+        if actual > planned { "late" } else { "early" },
+        planned.lmst()
     )
 }
 
@@ -123,17 +120,17 @@ impl SolExecution {
         Some(Step {
             activity: self.inst.problem().activities[task.activity].id.clone(),
             segment: task.segment,
-            start_s: s.start_s,
-            end_s: s.end_s,
+            start_s: SolSeconds::from_planner_s(s.start_s),
+            end_s: SolSeconds::from_planner_s(s.end_s),
             drive_m: task.drive_m,
         })
     }
 
-    /// The planning window `[start, end]`, s after midnight.
+    /// The planning window `[start, end]`.
     #[must_use]
-    pub fn window_s(&self) -> [i64; 2] {
+    pub fn window(&self) -> [SolSeconds; 2] {
         let p = self.inst.problem();
-        [p.start_s, p.end_s]
+        [p.start_s, p.end_s].map(SolSeconds::from_planner_s)
     }
 
     /// Metres of driving still in the plan.
@@ -152,21 +149,23 @@ impl SolExecution {
         self.inst.problem().activities.iter().any(|a| a.id == id)
     }
 
-    /// The next step ran and ended at `actual_end_s`; `outcome` goes into its timeline row.
+    /// The next step ran and ended at `actual_end`; `outcome` goes into its timeline row.
     /// Without a disruption the rest of the plan is repaired (or, if a later activity no
     /// longer fits, replanned); with one, its activities are cancelled and the rest replanned.
     pub fn complete(
         &mut self,
-        actual_end_s: i64,
+        actual_end: SolSeconds,
         outcome: Option<String>,
         disruption: Option<Disruption>,
     ) {
         let Some(first) = self.remaining.steps.first().copied() else {
             return;
         };
-        let end_s = actual_end_s
-            .max(first.start_s + 1)
-            .min(self.inst.problem().end_s.max(first.start_s + 1));
+        let start = SolSeconds::from_planner_s(first.start_s);
+        let planned_end = SolSeconds::from_planner_s(first.end_s);
+        let window_end = SolSeconds::from_planner_s(self.inst.problem().end_s);
+        let end = actual_end.max(start + 1).min(window_end.max(start + 1));
+        let end_s = end.planner_s();
         let name = self.inst.task(first.task).name.clone();
         let (state, repaired) = match repair(&self.inst, &self.state, &self.remaining, 0, end_s) {
             Ok(RepairOutcome::Repaired {
@@ -177,8 +176,8 @@ impl SolExecution {
                 if shifted > 0 && disruption.is_none() {
                     self.changes.push(format!(
                         "{}: {name} ended {}: {shifted} later activities shifted",
-                        lmst(end_s),
-                        slip(end_s, first.end_s)
+                        end.lmst(),
+                        slip(end, planned_end)
                     ));
                 }
                 (state, Some(plan))
@@ -192,8 +191,8 @@ impl SolExecution {
                 if disruption.is_none() {
                     self.changes.push(format!(
                         "{}: {name} ended {}: {} no longer fits ({reason:?}): replanned",
-                        lmst(end_s),
-                        slip(end_s, first.end_s),
+                        end.lmst(),
+                        slip(end, planned_end),
                         self.inst.task(task).name
                     ));
                 }
@@ -211,10 +210,10 @@ impl SolExecution {
         };
         self.rows.push(TimelineStep {
             activity: name,
-            start_lmst: lmst(first.start_s),
-            end_lmst: lmst(end_s),
-            start_s: first.start_s,
-            end_s,
+            start_lmst: start.lmst(),
+            end_lmst: end.lmst(),
+            start_s: start,
+            end_s: end,
             energy_wh_after: state.energy_wh,
             data_mb_after: state.data_mb,
             outcome,
@@ -233,7 +232,7 @@ impl SolExecution {
                 }
                 self.changes.push(format!(
                     "{}: {}{}: replanned",
-                    lmst(end_s),
+                    end.lmst(),
                     d.reason,
                     if cancelled.is_empty() {
                         String::new()
@@ -347,10 +346,9 @@ mod tests {
     use super::*;
     use crate::science::SolScience;
     use crate::sol_plan::{ChainDurations, LOCALIZATION_CHAIN, planning_window};
-    use crate::time::SolSeconds;
 
     fn at(lmst: &str) -> SolSeconds {
-        SolSeconds::parse_lmst(lmst).unwrap_or(SolSeconds(0))
+        SolSeconds::parse_lmst(lmst).unwrap_or(SolSeconds::MIDNIGHT)
     }
 
     fn req(chain: bool) -> SolPlanRequest {
@@ -376,7 +374,7 @@ mod tests {
     /// Execute every step as planned, except `actual(step)` (a different end, a disruption).
     fn run(
         mut exec: SolExecution,
-        mut actual: impl FnMut(&Step) -> Option<(i64, Option<Disruption>)>,
+        mut actual: impl FnMut(&Step) -> Option<(SolSeconds, Option<Disruption>)>,
     ) -> SolPlan {
         let mut guard = 0;
         while let Some(step) = exec.next_step() {
@@ -409,7 +407,7 @@ mod tests {
     #[test]
     fn an_early_drive_end_shifts_the_rest_and_stays_valid() {
         let p = SolPlanParams::default();
-        let early = i64::from(at("12:10").0);
+        let early = at("12:10");
         let plan = run(SolExecution::new(&p, &req(true)).expect("plans"), |s| {
             (s.activity == "drive").then_some((early, None))
         });
@@ -428,7 +426,7 @@ mod tests {
     #[test]
     fn a_late_chain_step_is_fed_back_and_shifts_what_follows() {
         let p = SolPlanParams::default();
-        let mut planned_compare = 0;
+        let mut planned_compare = SolSeconds::MIDNIGHT;
         let plan = run(SolExecution::new(&p, &req(true)).expect("plans"), |s| {
             if s.activity == "compare_apply" {
                 planned_compare = s.start_s;
@@ -507,8 +505,8 @@ mod tests {
             decay: 1.0,
         };
         let window = planning_window(&p, req(false).drive_start, req(false).drive_end);
-        target.earliest_start_s = window[0];
-        target.latest_start_s = window[1] - 1_200;
+        target.earliest_start_s = window[0].planner_s();
+        target.latest_start_s = window[1].planner_s() - 1_200;
         exec.inject(
             target,
             Some(campaign),

@@ -74,37 +74,37 @@ fn chained(id: &str, duration_s: i64, power_w: f64, after: &str, window: [i64; 2
     a
 }
 
-/// The sol's planning window `[start, end]`, s after midnight: from the wake-up (or the
-/// heating before the drive, if earlier) to the end of the sol's activities (at least four
-/// hours after the drive window, room for the imaging and the localization chain).
+/// The sol's planning window `[start, end]`: from the wake-up (or the heating before the
+/// drive, if earlier) to the end of the sol's activities (at least four hours after the drive
+/// window, room for the imaging and the localization chain).
 #[must_use]
 pub fn planning_window(
     p: &SolPlanParams,
     drive_start: SolSeconds,
     drive_end: SolSeconds,
-) -> [i64; 2] {
-    let drive_start = i64::from(drive_start.0);
-    let drive_end = i64::from(drive_end.0).max(drive_start + 1);
+) -> [SolSeconds; 2] {
+    let drive_end = drive_end.max(drive_start + 1);
     [
-        i64::from(p.sol_start.0).min(drive_start - p.heating_s),
-        i64::from(p.sol_end.0).max(drive_end + 4 * 3_600),
+        p.sol_start.min(drive_start - p.heating_s),
+        p.sol_end.max(drive_end + 4 * 3_600),
     ]
 }
 
 /// Metres the drive window allows at the nominal rate.
 #[must_use]
 pub fn planned_drive_m(req: &SolPlanRequest) -> f64 {
-    let drive_start = i64::from(req.drive_start.0);
-    let drive_end = i64::from(req.drive_end.0).max(drive_start + 1);
-    req.drive_rate_m_per_h * (drive_end - drive_start) as f64 / 3_600.0
+    let drive_end = req.drive_end.max(req.drive_start + 1);
+    req.drive_rate_m_per_h * (drive_end - req.drive_start) as f64 / 3_600.0
 }
 
-/// The planning problem of one drive sol.
+/// The planning problem of one drive sol (its times cross to the planner here, as
+/// [`SolSeconds::planner_s`]).
 #[must_use]
 pub fn sol_problem(p: &SolPlanParams, req: &SolPlanRequest) -> Problem {
-    let drive_start = i64::from(req.drive_start.0);
-    let drive_end = i64::from(req.drive_end.0).max(drive_start + 1);
-    let [start_s, end_s] = planning_window(p, req.drive_start, req.drive_end);
+    let drive_start = req.drive_start.planner_s();
+    let drive_end = req.drive_end.planner_s().max(drive_start + 1);
+    let [start, end] = planning_window(p, req.drive_start, req.drive_end);
+    let (start_s, end_s) = (start.planner_s(), end.planner_s());
     let late = end_s;
     let mut heating = Activity::task(
         "heating",
@@ -134,7 +134,7 @@ pub fn sol_problem(p: &SolPlanParams, req: &SolPlanRequest) -> Problem {
     );
     imaging.data_mb = p.imaging_data_mb;
     let mut activities = vec![heating, drive, imaging];
-    if let Some(pass) = req.downlink.map(|t| i64::from(t.0))
+    if let Some(pass) = req.downlink.map(SolSeconds::planner_s)
         && pass >= drive_end
         && pass + p.comm_pass_s <= end_s
     {

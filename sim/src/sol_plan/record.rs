@@ -3,6 +3,8 @@
 
 use planner::PlanStatus;
 
+use crate::time::SolSeconds;
+
 /// One activity of the sol timeline, for the sol log.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct TimelineStep {
@@ -13,9 +15,9 @@ pub struct TimelineStep {
     /// End, LMST `HH:MM`.
     pub end_lmst: String,
     /// Start, seconds after local midnight.
-    pub start_s: i64,
+    pub start_s: SolSeconds,
     /// End, seconds after local midnight.
-    pub end_s: i64,
+    pub end_s: SolSeconds,
     /// Battery energy after it, Wh.
     pub energy_wh_after: f64,
     /// Stored data after it, MB.
