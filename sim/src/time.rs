@@ -31,7 +31,9 @@
 //! time (each step's commanded length over the drive rate, with the time budget trimming the last
 //! step) and the co-processor model's log (`localization::hbs`: a transfer at a byte rate takes
 //! fractional seconds). They become instants once, rounded to the nearest second, at the step
-//! they end ([`SolSeconds::after_s`]).
+//! they end ([`SolSeconds::after_s`]). AutoNav's sum stays `f64` on purpose: summing it in
+//! integer milliseconds moves the time budget's trim of the last step, and so every bundled
+//! scenario's positions, distances and plan times (up to 18 s on a sol).
 
 use std::ops::{Add, Sub};
 
@@ -140,7 +142,10 @@ mod tests {
     #[test]
     fn lmst_round_trips() {
         assert_eq!(SolSeconds::parse_lmst("00:00"), Some(SolSeconds(0)));
-        assert_eq!(SolSeconds::parse_lmst("24:00"), Some(SolSeconds::END_OF_SOL));
+        assert_eq!(
+            SolSeconds::parse_lmst("24:00"),
+            Some(SolSeconds::END_OF_SOL)
+        );
         let noon = SolSeconds::parse_lmst("12:00").expect("valid");
         assert_eq!(noon.planner_s(), i64::from(SOL_S / 2 + 1)); // 44,387.5 s rounds up
         assert_eq!(noon.lmst(), "12:00");
