@@ -5,7 +5,8 @@
 # Usage: peers/run_peer_benchmarks.sh [SECTION...]     (default: all sections)
 # Sections: grid (B3 keep-out growth, B4 A*), campaign (the whole rapid-traverse compare),
 #           census (B1 exact census scores, B2 full localization),
-#           planner (B6 activity planner against OR-Tools CP-SAT).
+#           planner (B6 activity planner against OR-Tools CP-SAT),
+#           study (many seeds through the library, map loaded once, against the CLI per run).
 #
 # The Rust benches build with -C target-cpu=native into their own target dir
 # (target/bench-native), so the shared target/ is not rebuilt with other flags.
@@ -74,8 +75,35 @@ section_planner() {
     uptime
 }
 
+# --- study: RUNS run indices × {ground, onboard} of sols 383-386 with the map loaded once
+# (study::Scenario, examples/hundred_seeds.rs) against the CLI, which loads per run -----------
+section_study() {
+    local runs="${STUDY_RUNS:-10}"
+    local scen=scenarios/sol383-386.toml
+    # Both sides from the one ordinary release build: the ratio is library against CLI.
+    cargo build --release --quiet --bin solsim -p solsim
+    cargo build --release --quiet -p study --example hundred_seeds
+    local bin=target/release/solsim
+    local example=target/release/examples/hundred_seeds
+    echo "== study: uptime (load on this 2-core machine) =="
+    uptime
+    for round in 1 2 3; do
+        echo "== study: round $round, library, 1 thread ($((2 * runs)) runs, one load) =="
+        /usr/bin/time -f "library: %e s wall, %U s user, %M KB peak" \
+            env RAYON_NUM_THREADS=1 "$example" "$scen" "$runs"
+        echo "== study: round $round, CLI, one process per run ($((2 * runs)) runs) =="
+        /usr/bin/time -f "cli: %e s wall, %U s user, %M KB peak" sh -c '
+            for _ in $(seq "$1"); do
+                for s in ground onboard; do
+                    RAYON_NUM_THREADS=1 "$2" run "$3" --strategy "$s" --no-files > /dev/null
+                done
+            done' sh "$runs" "$bin" "$scen"
+    done
+    uptime
+}
+
 sections=("$@")
-[ ${#sections[@]} -eq 0 ] && sections=(grid campaign census planner)
+[ ${#sections[@]} -eq 0 ] && sections=(grid campaign census planner study)
 for s in "${sections[@]}"; do
     "section_$s"
 done
