@@ -136,69 +136,109 @@ impl Campaign {
             });
         }
         let r = &self.rover;
-        let positive = [
-            ("rover.drive_rate_m_per_h", r.drive_rate_m_per_h),
-            ("rover.step_m", r.step_m),
-            ("rover.waypoint_tolerance_m", r.waypoint_tolerance_m),
+        // (parameter, value, what is allowed)
+        let params = [
+            (
+                "rover.drive_rate_m_per_h",
+                r.drive_rate_m_per_h,
+                Rule::Positive,
+            ),
+            ("rover.step_m", r.step_m, Rule::Positive),
+            (
+                "rover.waypoint_tolerance_m",
+                r.waypoint_tolerance_m,
+                Rule::Positive,
+            ),
+            ("rover.vo_success.sand", r.vo_success.sand, Rule::Fraction),
+            ("rover.vo_success.soil", r.vo_success.soil, Rule::Fraction),
+            (
+                "rover.vo_success.bedrock",
+                r.vo_success.bedrock,
+                Rule::Fraction,
+            ),
+            (
+                "rover.slip_fraction.sand",
+                r.slip_fraction.sand,
+                Rule::Fraction,
+            ),
+            (
+                "rover.slip_fraction.soil",
+                r.slip_fraction.soil,
+                Rule::Fraction,
+            ),
+            (
+                "rover.slip_fraction.bedrock",
+                r.slip_fraction.bedrock,
+                Rule::Fraction,
+            ),
+            (
+                "rover.vo_noise_fraction",
+                r.vo_noise_fraction,
+                Rule::Fraction,
+            ),
+            (
+                "rover.heading_sigma_deg",
+                r.heading_sigma_deg,
+                Rule::NonNegative,
+            ),
+            ("rover.edge_buffer_m", r.edge_buffer_m, Rule::NonNegative),
+            ("model.k_vo", self.model.k_vo, Rule::NonNegative),
+            ("model.k_novo", self.model.k_novo, Rule::NonNegative),
+            (
+                "model.initial_margin_m",
+                self.model.initial_margin_m,
+                Rule::NonNegative,
+            ),
+            (
+                "operator_margin_m",
+                self.operator_margin_m,
+                Rule::NonNegative,
+            ),
+            ("rover.terrain_cost.sand", r.terrain_cost.sand, Rule::Cost),
+            ("rover.terrain_cost.soil", r.terrain_cost.soil, Rule::Cost),
+            (
+                "rover.terrain_cost.bedrock",
+                r.terrain_cost.bedrock,
+                Rule::Cost,
+            ),
         ];
-        for (name, value) in positive {
-            if !(value.is_finite() && value > 0.0) {
+        for (name, value, rule) in params {
+            if !rule.allows(value) {
                 return Err(CampaignError::Parameter {
                     name,
                     value,
-                    expected: "a finite positive number",
-                });
-            }
-        }
-        let fractions = [
-            ("rover.vo_success.sand", r.vo_success.sand),
-            ("rover.vo_success.soil", r.vo_success.soil),
-            ("rover.vo_success.bedrock", r.vo_success.bedrock),
-            ("rover.slip_fraction.sand", r.slip_fraction.sand),
-            ("rover.slip_fraction.soil", r.slip_fraction.soil),
-            ("rover.slip_fraction.bedrock", r.slip_fraction.bedrock),
-            ("rover.vo_noise_fraction", r.vo_noise_fraction),
-        ];
-        for (name, value) in fractions {
-            if !(0.0..=1.0).contains(&value) {
-                return Err(CampaignError::Parameter {
-                    name,
-                    value,
-                    expected: "a fraction between 0 and 1",
-                });
-            }
-        }
-        let non_negative = [
-            ("rover.heading_sigma_deg", r.heading_sigma_deg),
-            ("rover.edge_buffer_m", r.edge_buffer_m),
-            ("model.k_vo", self.model.k_vo),
-            ("model.k_novo", self.model.k_novo),
-            ("model.initial_margin_m", self.model.initial_margin_m),
-            ("operator_margin_m", self.operator_margin_m),
-        ];
-        for (name, value) in non_negative {
-            if !(value.is_finite() && value >= 0.0) {
-                return Err(CampaignError::Parameter {
-                    name,
-                    value,
-                    expected: "a finite non-negative number",
-                });
-            }
-        }
-        let costs = [
-            ("rover.terrain_cost.sand", r.terrain_cost.sand),
-            ("rover.terrain_cost.soil", r.terrain_cost.soil),
-            ("rover.terrain_cost.bedrock", r.terrain_cost.bedrock),
-        ];
-        for (name, value) in costs {
-            if !(value.is_finite() && value >= 1.0) {
-                return Err(CampaignError::Parameter {
-                    name,
-                    value,
-                    expected: "a cost multiplier ≥ 1",
+                    expected: rule.expected(),
                 });
             }
         }
         Ok(())
+    }
+}
+
+/// What a numeric parameter of a campaign may be.
+#[derive(Clone, Copy)]
+enum Rule {
+    Positive,
+    Fraction,
+    NonNegative,
+    Cost,
+}
+
+impl Rule {
+    fn allows(self, v: f64) -> bool {
+        match self {
+            Rule::Positive => v.is_finite() && v > 0.0,
+            Rule::Fraction => (0.0..=1.0).contains(&v),
+            Rule::NonNegative => v.is_finite() && v >= 0.0,
+            Rule::Cost => v.is_finite() && v >= 1.0,
+        }
+    }
+    fn expected(self) -> &'static str {
+        match self {
+            Rule::Positive => "a finite positive number",
+            Rule::Fraction => "a fraction between 0 and 1",
+            Rule::NonNegative => "a finite non-negative number",
+            Rule::Cost => "a cost multiplier ≥ 1",
+        }
     }
 }
