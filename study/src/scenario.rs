@@ -914,6 +914,17 @@ impl Scenario {
             }
         }
         let grid = Arc::new(PlanningGrid::build(&zones, &layers, &spec.grid));
+        // The simulator places waypoints in grid cells: a point within rounding of the map's
+        // south or east edge (y = 1e-60 over y0 = 0) passes `contains_point` yet lies in no cell.
+        if let Some(i) = spec.route.iter().position(|w| grid.cell_of(*w).is_none()) {
+            let w = spec.route[i];
+            return Err(ScenarioError::field(
+                path,
+                format!("route.waypoints[{i}]"),
+                format!("a point on the map ({extent})"),
+                format!("[{}, {}]", w[0], w[1]),
+            ));
+        }
         let layers = Arc::new(layers);
         let localizer = match spec.localizer {
             LocalizerSpec::Statistical(statistical) => OnboardLocalizer::Statistical(statistical),

@@ -520,6 +520,16 @@ fn read_nodata<R: Read + Seek>(
     dec: &mut Decoder<R>,
     path: &Path,
 ) -> Result<Option<f64>, RasterError> {
+    // A number's text is short: refuse a long tag before the tiff crate reads it (it would
+    // allocate the declared length, and print a `dbg!` line past a limit).
+    if let Some(entry) = dec.image_ifd().find_entry(Tag::GdalNodata)
+        && entry.count() > 64
+    {
+        return Err(RasterError::BadNodata {
+            path: path.to_path_buf(),
+            found: format!("text of {} characters", entry.count()),
+        });
+    }
     let Some(value) = dec
         .find_tag(Tag::GdalNodata)
         .map_err(tiff_error(path, true))?

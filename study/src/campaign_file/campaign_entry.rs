@@ -138,7 +138,8 @@ pub(crate) fn campaign(
             let tol_min = need("tolerance_min", rc.tolerance_min)?;
             c.non_negative(&format!("{f}.tolerance_min"), tol_min, "minutes")?;
             let tolerance_s = (tol_min * 60.0).round() as i64;
-            if 2 * tolerance_s >= period_s {
+            // Saturating: a tolerance of 1e300 min converts to i64::MAX seconds.
+            if tolerance_s.saturating_mul(2) >= period_s {
                 return Err(c.err(
                     &format!("{f}.tolerance_min"),
                     "less than half of period_min, so instances do not overlap",
