@@ -83,13 +83,13 @@ fn a_directory_or_a_huge_file_is_refused() {
     let dir = tempfile::tempdir().expect("tempdir");
     let o = output_within(solsim().arg("validate").arg(dir.path()), LIMIT);
     assert_bad_input(&o, &["expected a regular file, got a directory"]);
-    // 17 MiB of comment lines: over the 16 MiB cap on text inputs, refused from its size.
+    // 17 MiB of comment lines: over the 1 MiB cap on TOML inputs, refused from its size.
     let big = dir.path().join("big.toml");
     std::fs::write(&big, "#\n".repeat(17 << 19)).expect("write");
     let o = output_within(solsim().arg("validate").arg(&big), LIMIT);
     assert_bad_input(
         &o,
-        &["big.toml", "expected at most 16 MiB of text, got 17 MiB"],
+        &["big.toml", "expected at most 1 MiB of text, got 17 MiB"],
     );
 }
 

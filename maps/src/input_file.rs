@@ -118,7 +118,15 @@ pub fn read_file_capped(path: &Path, limit_bytes: u64) -> Result<Vec<u8>, InputF
 /// # Errors
 /// As [`read_file_capped`], and [`InputFileError::NotUtf8`].
 pub fn read_text_file(path: &Path) -> Result<String, InputFileError> {
-    let bytes = read_file_capped(path, MAX_TEXT_FILE_BYTES)?;
+    read_text_file_capped(path, MAX_TEXT_FILE_BYTES)
+}
+
+/// Reads a regular UTF-8 text file of at most `limit_bytes`.
+///
+/// # Errors
+/// As [`read_file_capped`], and [`InputFileError::NotUtf8`].
+pub fn read_text_file_capped(path: &Path, limit_bytes: u64) -> Result<String, InputFileError> {
+    let bytes = read_file_capped(path, limit_bytes)?;
     String::from_utf8(bytes).map_err(|e| InputFileError::NotUtf8 {
         offset: e.utf8_error().valid_up_to(),
     })

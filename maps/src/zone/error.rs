@@ -197,6 +197,19 @@ pub enum ZoneError {
         value: f64,
     },
 
+    /// The keep-in polygons have more vertices together than
+    /// [`crate::zone::MAX_KEEP_IN_VERTICES`].
+    #[error(
+        "{}: keep_in zones: expected at most {} vertices in all keep-in polygons together, got {vertices}",
+        path.display(), crate::zone::MAX_KEEP_IN_VERTICES
+    )]
+    TooManyKeepInVertices {
+        /// The zones file.
+        path: PathBuf,
+        /// How many there are.
+        vertices: usize,
+    },
+
     /// A position has fewer than two numbers.
     #[error(
         "{}: features[{feature}] ({}).{field}: position has {len} number(s); expected [x, y] in metres",
