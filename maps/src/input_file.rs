@@ -29,7 +29,7 @@ pub enum InputFileError {
         kind: &'static str,
     },
     /// Larger than the cap.
-    #[error("expected at most {} of text, got {}", crate::input_file::human_bytes(*limit_bytes), crate::input_file::human_bytes(*bytes))]
+    #[error("expected at most {} of text, got {}", crate::input_file::human_bytes(*limit_bytes), crate::input_file::exact_bytes(*bytes))]
     TooLarge {
         /// The file's size (or the bytes read before stopping), bytes.
         bytes: u64,
@@ -145,6 +145,18 @@ pub fn excerpt(text: &str, max_chars: usize) -> String {
                 .map_or(text.len(), |(i, _)| i);
             format!("{}…", &text[..cut])
         }
+    }
+}
+
+/// [`human_bytes`] with the exact count beside it when that is rounded (`1.0 MiB (1050000
+/// bytes)`), so a size just over a limit does not read as the limit.
+#[must_use]
+pub fn exact_bytes(bytes: u64) -> String {
+    let human = human_bytes(bytes);
+    if human.ends_with(" B") {
+        human
+    } else {
+        format!("{human} ({bytes} bytes)")
     }
 }
 
