@@ -878,13 +878,14 @@ impl Scenario {
                 .map_or("map", |(f, _)| f);
                 map_error(field, source)
             })?;
-        // Checked again with the extent the layers actually cover.
         let (x0, y0, x1, y1) = layers.dem.extent_m();
-        let extent_m = [x1 - x0, y1 - y0];
-        let maps_bytes = items[..3].iter().fold(0u64, |t, i| t.saturating_add(i.1));
-        let total = maps_bytes.saturating_add(grid_bytes(extent_m).1);
-        if !budget.allows(total) {
-            return Err(grid_error(extent_m, total));
+        if dem_extent_m.is_none() {
+            // A DEM placed by neither the scenario nor its own tags: its grid is known only now.
+            let extent_m = [x1 - x0, y1 - y0];
+            let total = total.saturating_add(grid_bytes(extent_m).1);
+            if !budget.allows(total) {
+                return Err(grid_error(extent_m, total));
+            }
         }
         let zones = ZoneSet::load(&m.zones).map_err(|source| ScenarioError::Zones {
             path: path.to_path_buf(),
@@ -892,16 +893,6 @@ impl Scenario {
         })?;
 
         let extent = format!("x {x0:.1}..{x1:.1} m, y {y0:.1}..{y1:.1} m");
-        for (i, w) in spec.route.iter().enumerate() {
-            if !layers.dem.contains_point(w[0], w[1]) {
-                return Err(ScenarioError::field(
-                    path,
-                    format!("route.waypoints[{i}]"),
-                    format!("a point on the map ({extent})"),
-                    format!("[{}, {}]", w[0], w[1]),
-                ));
-            }
-        }
         for (i, t) in spec.science.targets.iter().enumerate() {
             let [x, y] = t.position_m;
             if !layers.dem.contains_point(x, y) {
@@ -914,8 +905,9 @@ impl Scenario {
             }
         }
         let grid = Arc::new(PlanningGrid::build(&zones, &layers, &spec.grid));
-        // The simulator places waypoints in grid cells: a point within rounding of the map's
-        // south or east edge (y = 1e-60 over y0 = 0) passes `contains_point` yet lies in no cell.
+        // Waypoints are on the map when they are in a grid cell: the simulator places them in
+        // cells, and a point within rounding of the map's south or east edge (y = 1e-60 over
+        // y0 = 0) passes `contains_point` yet lies in no cell.
         if let Some(i) = spec.route.iter().position(|w| grid.cell_of(*w).is_none()) {
             let w = spec.route[i];
             return Err(ScenarioError::field(
@@ -987,15 +979,11 @@ impl Scenario {
     /// and leg clearances are the ones loaded once, shared with every other run.
     #[must_use]
     pub fn run(&self, strategy: Strategy, seed: u64) -> CampaignOutcome {
-        if seed == self.campaign.seed {
-            campaign::run_campaign(&self.campaign, strategy, &self.legs)
-        } else {
-            let reseeded = Campaign {
-                seed,
-                ..self.campaign.clone()
-            };
-            campaign::run_campaign(&reseeded, strategy, &self.legs)
-        }
+        let reseeded = Campaign {
+            seed,
+            ..self.campaign.clone()
+        };
+        campaign::run_campaign(&reseeded, strategy, &self.legs)
     }
 
     /// Runs `strategy` as run `run` of a study ([`sim::seeds::run_seed`]: run 0 is the scenario's
