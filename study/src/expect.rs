@@ -18,13 +18,27 @@
 //! sols_to_goal = [1, 3]
 //! goal_sooner_than = { strategy = "replay", by_at_least_sols = 1 }
 //! covers = { from_sol = 402, distance_m = 1411.0, sols = [6, 6] }
+//!
+//! [[expect]]                       # over a sweep: runs 0..200 of each strategy named
+//! what = "onboard rarely faults; it reaches the goal sooner than ground"
+//! strategy = "onboard"
+//! runs = 200                       # statistical checks below need runs
+//! no_path_rate = [0.0, 0.10]       # the rate over the runs within [low, high]; also
+//!                                  # fault_rate, truth_outside_disc_rate, goal_reached_rate
+//! paired = { baseline = "ground", figure = "sols_to_goal", mean = [-2.0, -0.5] }
 //! ```
+//!
+//! A statistical entry checks the point estimate (a rate, or the mean paired difference over
+//! the run indices where both strategies have the figure) against its range; `solsim regress`
+//! prints the 95 % interval beside it. The figures are the columns of a sweep's `runs.parquet`
+//! ([`crate::figure::Figure`]).
 
 use std::path::Path;
 
 use serde::Deserialize;
 
 use crate::error::ScenarioError;
+use crate::figure::{Figure, RateKind};
 use sim::calendar::Calendar;
 use sim::{CampaignOutcome, FaultKind, Strategy};
 
@@ -51,6 +65,86 @@ pub struct RawExpectation {
     covers: Option<RawCovers>,
     plan_violations: Option<[u32; 2]>,
     science: Option<RawScience>,
+    runs: Option<u64>,
+    no_path_rate: Option<[f64; 2]>,
+    fault_rate: Option<[f64; 2]>,
+    truth_outside_disc_rate: Option<[f64; 2]>,
+    goal_reached_rate: Option<[f64; 2]>,
+    paired: Option<RawPaired>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawPaired {
+    baseline: String,
+    figure: String,
+    mean: [f64; 2],
+}
+
+/// Most runs a statistical expectation may ask for.
+pub const MAX_EXPECT_RUNS: u64 = 100_000;
+
+/// One check of a statistical expectation.
+#[derive(Debug, Clone, PartialEq)]
+pub enum StatCheck {
+    /// The rate of runs with the outcome within `[lo, hi]`.
+    Rate {
+        /// Which rate.
+        rate: RateKind,
+        /// Bounds (fractions).
+        lo: f64,
+        /// Bounds (fractions).
+        hi: f64,
+    },
+    /// The mean over runs of (strategy − baseline) on `figure` within `[lo, hi]`.
+    Paired {
+        /// The other strategy.
+        baseline: Strategy,
+        /// The figure.
+        figure: Figure,
+        /// Bounds.
+        lo: f64,
+        /// Bounds.
+        hi: f64,
+    },
+}
+
+/// A validated `[[expect]]` entry that holds over a sweep (`runs = N`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct StatisticalExpectation {
+    /// Index in the file.
+    pub index: usize,
+    /// Human description.
+    pub what: String,
+    /// Strategy run.
+    pub strategy: Strategy,
+    /// Run indices `0..runs`.
+    pub runs: u64,
+    /// The checks.
+    pub checks: Vec<StatCheck>,
+}
+
+impl StatisticalExpectation {
+    /// The strategies this expectation needs swept.
+    #[must_use]
+    pub fn strategies(&self) -> Vec<Strategy> {
+        let mut v = vec![self.strategy];
+        for c in &self.checks {
+            if let StatCheck::Paired { baseline, .. } = c {
+                v.push(*baseline);
+            }
+        }
+        v
+    }
+}
+
+/// An `[[expect]]` entry: of one seeded run, or over a sweep.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Resolved {
+    /// Checks of one run per strategy under the scenario's seed.
+    Run(Expectation),
+    /// Checks over runs `0..runs`.
+    Sweep(StatisticalExpectation),
 }
 
 #[derive(Debug, Deserialize)]
@@ -146,7 +240,7 @@ impl RawExpectation {
         index: usize,
         calendar: &Calendar,
         campaign_ids: &[&str],
-    ) -> Result<Expectation, ScenarioError> {
+    ) -> Result<Resolved, ScenarioError> {
         let f = |name: &str| format!("expect[{index}].{name}");
         let names = Strategy::ALL.map(Strategy::name).join(", ");
         let strategy = Strategy::from_name(&self.strategy).ok_or_else(|| {
@@ -157,6 +251,129 @@ impl RawExpectation {
                 format!("{:?}", self.strategy),
             )
         })?;
+        let rates = [
+            (RateKind::NoPath, self.no_path_rate),
+            (RateKind::Fault, self.fault_rate),
+            (RateKind::TruthOutsideDisc, self.truth_outside_disc_rate),
+            (RateKind::GoalReached, self.goal_reached_rate),
+        ];
+        let statistical = rates.iter().any(|(_, r)| r.is_some()) || self.paired.is_some();
+        match (self.runs, statistical) {
+            (None, false) => {}
+            (None, true) => {
+                return Err(ScenarioError::field(
+                    path,
+                    f("runs"),
+                    "a number of runs for the statistical checks (no_path_rate, paired, …)",
+                    "nothing",
+                ));
+            }
+            (Some(runs), _) => {
+                let mut checks = Vec::new();
+                if !(1..=MAX_EXPECT_RUNS).contains(&runs) {
+                    return Err(ScenarioError::field(
+                        path,
+                        f("runs"),
+                        format!("1 to {MAX_EXPECT_RUNS} runs"),
+                        runs,
+                    ));
+                }
+                let per_run = self.sol.is_some()
+                    || self.fault.is_some()
+                    || self.fault_after_m.is_some()
+                    || self.fault_uncertainty_m.is_some()
+                    || self.distance_m.is_some()
+                    || self.end_uncertainty_m.is_some()
+                    || self.drove.is_some()
+                    || self.no_path_faults.is_some()
+                    || self.faults.is_some()
+                    || self.sols_to_goal.is_some()
+                    || self.total_distance_m.is_some()
+                    || self.max_uncertainty_m.is_some()
+                    || self.goal_sooner_than.is_some()
+                    || self.covers.is_some()
+                    || self.plan_violations.is_some()
+                    || self.science.is_some();
+                if per_run {
+                    return Err(ScenarioError::field(
+                        path,
+                        f("runs"),
+                        "only statistical checks (no_path_rate, fault_rate, truth_outside_disc_rate, goal_reached_rate, paired) beside runs: put checks of one run in their own [[expect]]",
+                        runs,
+                    ));
+                }
+                for (rate, r) in rates {
+                    if let Some([lo, hi]) = r {
+                        if !(lo.is_finite() && hi.is_finite() && 0.0 <= lo && lo <= hi && hi <= 1.0)
+                        {
+                            return Err(ScenarioError::field(
+                                path,
+                                f(rate.name()),
+                                "a range [low, high] of fractions, 0 ≤ low ≤ high ≤ 1",
+                                format!("[{lo}, {hi}]"),
+                            ));
+                        }
+                        checks.push(StatCheck::Rate { rate, lo, hi });
+                    }
+                }
+                if let Some(p) = self.paired {
+                    let baseline = Strategy::from_name(&p.baseline).ok_or_else(|| {
+                        ScenarioError::field(
+                            path,
+                            f("paired.baseline"),
+                            format!("one of {names}"),
+                            format!("{:?}", p.baseline),
+                        )
+                    })?;
+                    if baseline == strategy {
+                        return Err(ScenarioError::field(
+                            path,
+                            f("paired.baseline"),
+                            "a strategy other than the entry's own",
+                            format!("{:?}", p.baseline),
+                        ));
+                    }
+                    let figure = Figure::from_name(&p.figure).ok_or_else(|| {
+                        ScenarioError::field(
+                            path,
+                            f("paired.figure"),
+                            format!("one of {}", Figure::ALL.map(Figure::name).join(", ")),
+                            format!("{:?}", p.figure),
+                        )
+                    })?;
+                    let [lo, hi] = p.mean;
+                    if !(lo.is_finite() && hi.is_finite() && lo <= hi) {
+                        return Err(ScenarioError::field(
+                            path,
+                            f("paired.mean"),
+                            "a range [low, high] with low ≤ high",
+                            format!("[{lo}, {hi}]"),
+                        ));
+                    }
+                    checks.push(StatCheck::Paired {
+                        baseline,
+                        figure,
+                        lo,
+                        hi,
+                    });
+                }
+                if checks.is_empty() {
+                    return Err(ScenarioError::field(
+                        path,
+                        f("(checks)"),
+                        "at least one statistical check beside runs (no_path_rate, paired, …)",
+                        "none",
+                    ));
+                }
+                return Ok(Resolved::Sweep(StatisticalExpectation {
+                    index,
+                    what: self.what,
+                    strategy,
+                    runs,
+                    checks,
+                }));
+            }
+        }
         if let Some(sol) = self.sol
             && !calendar.sols.iter().any(|s| s.sol == sol)
         {
@@ -301,13 +518,13 @@ impl RawExpectation {
                 "none",
             ));
         }
-        Ok(Expectation {
+        Ok(Resolved::Run(Expectation {
             index,
             what: self.what,
             strategy,
             sol: self.sol,
             checks,
-        })
+        }))
     }
 }
 

@@ -50,6 +50,7 @@ pub mod campaign_file;
 mod check;
 pub mod error;
 pub mod expect;
+pub mod figure;
 pub mod input;
 pub mod recipe;
 pub mod scenario;
@@ -57,5 +58,5 @@ pub mod science;
 
 pub use campaign_file::{CampaignFile, PlanFileError};
 pub use error::ScenarioError;
-pub use expect::Expectation;
+pub use expect::{Expectation, StatisticalExpectation};
 pub use scenario::Scenario;

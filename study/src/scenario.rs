@@ -15,7 +15,7 @@ use crate::error::ScenarioError;
 
 mod raw;
 
-use crate::expect::{Expectation, Mismatch};
+use crate::expect::{Expectation, Mismatch, StatisticalExpectation};
 use localization::matcher::Method;
 use localization::onboard::OnboardSettings;
 use maps::{GeoTransform, MapLayers, MemoryBudget, ZoneSet};
@@ -109,12 +109,27 @@ pub struct ScenarioSpec {
     pub max_extension_sols: u32,
     /// Science campaigns (target positions on the map: checked by [`Scenario::build`]).
     pub science: sim::science::Science,
-    /// Expected outcomes.
+    /// Expected outcomes of one seeded run per strategy.
     pub expectations: Vec<Expectation>,
+    /// Expected outcomes over a sweep (`runs = N`).
+    pub statistical_expectations: Vec<StatisticalExpectation>,
+    /// The stretch a study compares strategies on (`[study_segment]`).
+    pub study_segment: Option<StudySegment>,
     /// Per-sol notes.
     pub notes: Vec<(u32, String)>,
     /// Whether any sol has historic data.
     pub has_history: bool,
+}
+
+/// `[study_segment]`: the stretch of the traverse a study compares strategies on — the sols
+/// needed to drive `distance_m` metres counted from `from_sol` (`segment_sols` in a sweep's
+/// `runs.parquet`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StudySegment {
+    /// First sol counted (a sol of the calendar).
+    pub from_sol: u32,
+    /// Metres to cover.
+    pub distance_m: f64,
 }
 
 /// The `[map]` section: files resolved against the scenario's folder.
@@ -170,8 +185,12 @@ pub struct Scenario {
     pub sha256: String,
     /// What to simulate.
     pub campaign: Campaign,
-    /// Expected outcomes checked by `solsim regress`.
+    /// Expected outcomes of one seeded run per strategy, checked by `solsim regress`.
     pub expectations: Vec<Expectation>,
+    /// Expected outcomes over a sweep (`runs = N`), checked by `solsim regress`.
+    pub statistical_expectations: Vec<StatisticalExpectation>,
+    /// The stretch a study compares strategies on (`[study_segment]`).
+    pub study_segment: Option<StudySegment>,
     /// Per-sol notes from the file.
     pub notes: Vec<(u32, String)>,
     /// Whether any sol has historic data (so the `replay` strategy is meaningful).
@@ -701,12 +720,37 @@ impl ScenarioSpec {
             &format!("|x|, |y| ≤ {MAX_COORDINATE_M} m"),
         )?;
         let campaign_ids: Vec<&str> = science.campaign_ids().collect();
-        let expectations = raw
-            .expect
-            .into_iter()
-            .enumerate()
-            .map(|(i, e)| e.resolve(path, i, &calendar, &campaign_ids))
-            .collect::<Result<Vec<_>, _>>()?;
+        let mut expectations = Vec::new();
+        let mut statistical_expectations = Vec::new();
+        for (i, e) in raw.expect.into_iter().enumerate() {
+            match e.resolve(path, i, &calendar, &campaign_ids)? {
+                crate::expect::Resolved::Run(e) => expectations.push(e),
+                crate::expect::Resolved::Sweep(e) => statistical_expectations.push(e),
+            }
+        }
+        let study_segment = match raw.study_segment {
+            None => None,
+            Some(g) => {
+                if !calendar.sols.iter().any(|s| s.sol == g.from_sol) {
+                    return Err(ScenarioError::field(
+                        path,
+                        "study_segment.from_sol",
+                        "a sol of the calendar",
+                        g.from_sol,
+                    ));
+                }
+                Check { path }.positive_at_most(
+                    "study_segment.distance_m",
+                    g.distance_m,
+                    MAX_SOL_DRIVE_M * MAX_SOLS as f64,
+                    "metres",
+                )?;
+                Some(StudySegment {
+                    from_sol: g.from_sol,
+                    distance_m: g.distance_m,
+                })
+            }
+        };
         let post_drive_imaging_s = ops
             .post_drive_imaging_s
             .unwrap_or(DEFAULT_POST_DRIVE_IMAGING_S);
@@ -751,6 +795,8 @@ impl ScenarioSpec {
             max_extension_sols,
             science,
             expectations,
+            statistical_expectations,
+            study_segment,
             notes,
             has_history,
         })
@@ -961,6 +1007,8 @@ impl Scenario {
             sha256: spec.sha256,
             campaign,
             expectations: spec.expectations,
+            statistical_expectations: spec.statistical_expectations,
+            study_segment: spec.study_segment,
             notes: spec.notes,
             has_history: spec.has_history,
             layers,

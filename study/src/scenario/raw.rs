@@ -29,8 +29,16 @@ pub struct RawScenario {
     pub(crate) sols: Vec<RawSol>,
     #[serde(default)]
     pub(crate) science: crate::campaign_file::raw::RawScience,
+    pub(crate) study_segment: Option<RawStudySegment>,
     #[serde(default)]
     pub(crate) expect: Vec<RawExpectation>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawStudySegment {
+    pub(crate) from_sol: u32,
+    pub(crate) distance_m: f64,
 }
 
 #[derive(Debug, Deserialize)]

@@ -1,0 +1,108 @@
+//! The per-run figures and rates of a Monte Carlo sweep, by name: what `summary.json`
+//! reports and what a statistical `[[expect]]` entry (`runs = N`) may check. The sweep crate
+//! computes them from its run table.
+
+/// A per-run figure of a sweep's `runs.parquet` that a study summarises and an `[[expect]]`
+/// entry over a sweep may check.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Figure {
+    /// `sols_to_goal` (runs that reached the goal).
+    SolsToGoal,
+    /// `segment_sols`: sols to cover the study segment (runs that covered it).
+    SegmentSols,
+    /// `drive_sols`.
+    DriveSols,
+    /// `distance_m`.
+    DistanceM,
+    /// `no_path_faults`.
+    NoPathFaults,
+    /// `faults`.
+    Faults,
+    /// `max_uncertainty_m`.
+    MaxUncertaintyM,
+    /// `onboard_localizations_applied`.
+    OnboardApplied,
+    /// `onboard_localizations_rejected`.
+    OnboardRejected,
+    /// `max_truth_error_m`.
+    MaxTruthErrorM,
+}
+
+impl Figure {
+    /// Every figure, in report order.
+    pub const ALL: [Figure; 10] = [
+        Figure::SolsToGoal,
+        Figure::SegmentSols,
+        Figure::DriveSols,
+        Figure::DistanceM,
+        Figure::NoPathFaults,
+        Figure::Faults,
+        Figure::MaxUncertaintyM,
+        Figure::OnboardApplied,
+        Figure::OnboardRejected,
+        Figure::MaxTruthErrorM,
+    ];
+
+    /// The column name in `runs.parquet`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Figure::SolsToGoal => "sols_to_goal",
+            Figure::SegmentSols => "segment_sols",
+            Figure::DriveSols => "drive_sols",
+            Figure::DistanceM => "distance_m",
+            Figure::NoPathFaults => "no_path_faults",
+            Figure::Faults => "faults",
+            Figure::MaxUncertaintyM => "max_uncertainty_m",
+            Figure::OnboardApplied => "onboard_localizations_applied",
+            Figure::OnboardRejected => "onboard_localizations_rejected",
+            Figure::MaxTruthErrorM => "max_truth_error_m",
+        }
+    }
+
+    /// The figure named `name` (a `runs.parquet` column).
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|f| f.name() == name)
+    }
+}
+
+/// A yes/no outcome of a run whose rate the study reports.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RateKind {
+    /// At least one NO_PATH fault.
+    NoPath,
+    /// At least one fault of any kind.
+    Fault,
+    /// The true position outside the uncertainty disc at the end of at least one sol.
+    TruthOutsideDisc,
+    /// The end of the route reached within the calendar.
+    GoalReached,
+}
+
+impl RateKind {
+    /// Every rate, in report order.
+    pub const ALL: [RateKind; 4] = [
+        RateKind::NoPath,
+        RateKind::Fault,
+        RateKind::TruthOutsideDisc,
+        RateKind::GoalReached,
+    ];
+
+    /// The name in `summary.json` and in `[[expect]]` (`no_path_rate`, …).
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            RateKind::NoPath => "no_path_rate",
+            RateKind::Fault => "fault_rate",
+            RateKind::TruthOutsideDisc => "truth_outside_disc_rate",
+            RateKind::GoalReached => "goal_reached_rate",
+        }
+    }
+
+    /// The rate named `name` (`no_path_rate`, …).
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|r| r.name() == name)
+    }
+}

@@ -1,0 +1,767 @@
+//! Running a sweep into a directory: chunks committed as they finish, a manifest to resume
+//! from, and the output files assembled at the end; merging shard directories.
+//!
+//! A sweep directory holds, once complete:
+//!
+//! ```text
+//! manifest.json   what was run (scenario, seed, runs, strategies, shard) and the files' SHA-256
+//! runs.parquet    one row per run × strategy (crate::rows::RunRow)
+//! sols.parquet    one row per run × strategy × sol (crate::rows::SolRow)
+//! summary.json    the statistics (crate::summary)
+//! ```
+//!
+//! While running it also holds `chunks/`. Every output byte is a function of the scenario file,
+//! the seed, the runs and the strategies: not of the thread count, of where a kill interrupted
+//! the sweep, or of how it was cut into shards.
+
+use std::collections::BTreeSet;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use rayon::prelude::*;
+use serde::Serialize;
+use sim::Strategy;
+use study::Scenario;
+
+use crate::error::SweepError;
+use crate::manifest::{
+    ChunkEntry, MANIFEST, Manifest, ScenarioId, SegmentInfo, ShardInfo, State, sha256_file,
+};
+use crate::parquet_io::{TableWriter, read_table, tmp_path, write_durably};
+use crate::rows::{self, RunRow, Segment, SolRow};
+use crate::summary::{self, Statistics};
+
+/// Default runs per committed chunk.
+pub const DEFAULT_CHUNK_RUNS: u64 = 10;
+/// Most runs one sweep may ask for (a run index is a `u64`; this keeps the run table and its
+/// statistics within memory: 5 strategies × 10⁸ runs would be ~80 GB of rows).
+pub const MAX_RUNS: u64 = 10_000_000;
+/// Memory per row of the run table held for the statistics, bytes (`RunRow` with its vector
+/// slot, rounded up).
+const RUN_ROW_BYTES: u64 = 192;
+
+/// A slice of the run indices: `--shard INDEX/COUNT`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shard {
+    /// This shard, `0..count`.
+    pub index: u64,
+    /// Shards in all.
+    pub count: u64,
+}
+
+impl Shard {
+    /// Parses `K/N` (`0 ≤ K < N`).
+    ///
+    /// # Errors
+    /// Anything else.
+    pub fn parse(text: &str) -> Result<Self, SweepError> {
+        let bad = || SweepError::option("--shard", "K/N with 0 ≤ K < N (e.g. 0/4)", text);
+        let (k, n) = text.split_once('/').ok_or_else(bad)?;
+        let (index, count): (u64, u64) = (
+            k.trim().parse().map_err(|_| bad())?,
+            n.trim().parse().map_err(|_| bad())?,
+        );
+        if count == 0 || index >= count {
+            return Err(bad());
+        }
+        Ok(Self { index, count })
+    }
+
+    /// The run indices of this shard: `index·runs/count .. (index+1)·runs/count`, so shards
+    /// `0..count` tile `0..runs` in order.
+    #[must_use]
+    pub fn range(self, runs: u64) -> Range<u64> {
+        let at = |k: u64| (u128::from(k) * u128::from(runs) / u128::from(self.count)) as u64;
+        at(self.index)..at(self.index + 1)
+    }
+}
+
+/// What to sweep.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SweepSpec {
+    /// Run indices `0..runs`.
+    pub runs: u64,
+    /// Strategies, each run under every one (in this order in the tables).
+    pub strategies: Vec<Strategy>,
+    /// The sweep's seed: run `i` runs under [`sim::seeds::run_seed`]`(seed, i)`.
+    pub seed: u64,
+    /// The strategy paired differences are taken against (`None`: none).
+    pub baseline: Option<Strategy>,
+    /// Run only this slice.
+    pub shard: Option<Shard>,
+    /// Runs per committed chunk.
+    pub chunk_runs: u64,
+}
+
+impl SweepSpec {
+    /// A sweep of `runs` runs of every strategy that makes sense for the scenario, under its
+    /// own seed, against `ground`.
+    #[must_use]
+    pub fn new(scenario: &Scenario, runs: u64) -> Self {
+        let strategies = scenario.strategies();
+        Self {
+            runs,
+            baseline: strategies
+                .contains(&Strategy::Ground)
+                .then_some(Strategy::Ground),
+            strategies,
+            seed: scenario.seed(),
+            shard: None,
+            chunk_runs: DEFAULT_CHUNK_RUNS,
+        }
+    }
+
+    /// The run indices this sweep runs.
+    #[must_use]
+    pub fn run_range(&self) -> Range<u64> {
+        self.shard.map_or(0..self.runs, |s| s.range(self.runs))
+    }
+
+    /// Checks the spec against the scenario and the memory budget.
+    ///
+    /// # Errors
+    /// No runs or strategies, too many runs, a strategy twice, `replay` without historic
+    /// data, a baseline that is not one of the strategies.
+    pub fn validate(
+        &self,
+        scenario: &Scenario,
+        budget: maps::MemoryBudget,
+    ) -> Result<(), SweepError> {
+        if self.runs == 0 || self.runs > MAX_RUNS {
+            return Err(SweepError::option(
+                "--runs",
+                format!("a number of runs from 1 to {MAX_RUNS}"),
+                self.runs,
+            ));
+        }
+        let need = self.runs * self.strategies.len() as u64 * RUN_ROW_BYTES;
+        if !budget.allows(need) {
+            return Err(SweepError::option(
+                "--runs",
+                format!(
+                    "a sweep whose run table fits the memory budget of {} ({} runs × {} strategies need {})",
+                    maps::input_file::human_bytes(budget.limit_bytes),
+                    self.runs,
+                    self.strategies.len(),
+                    maps::input_file::human_bytes(need)
+                ),
+                self.runs,
+            ));
+        }
+        if self.strategies.is_empty() {
+            return Err(SweepError::option(
+                "--strategies",
+                "at least one strategy",
+                "none",
+            ));
+        }
+        let mut seen = BTreeSet::new();
+        for s in &self.strategies {
+            if !seen.insert(s.stream_id()) {
+                return Err(SweepError::option(
+                    "--strategies",
+                    "each strategy once",
+                    format!("{} twice", s.name()),
+                ));
+            }
+            if *s == Strategy::Replay && !scenario.has_history {
+                return Err(SweepError::option(
+                    "--strategies",
+                    format!(
+                        "strategies without replay: {} has no historic drives",
+                        scenario.path.display()
+                    ),
+                    "replay",
+                ));
+            }
+        }
+        if let Some(b) = self.baseline
+            && !self.strategies.contains(&b)
+        {
+            return Err(SweepError::option(
+                "--baseline",
+                format!(
+                    "one of the swept strategies ({})",
+                    self.strategies
+                        .iter()
+                        .map(|s| s.name())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+                b.name(),
+            ));
+        }
+        if self.chunk_runs == 0 {
+            return Err(SweepError::option("--chunk-runs", "at least 1", 0));
+        }
+        Ok(())
+    }
+
+    fn manifest(&self, scenario: &Scenario, segment: Option<Segment>) -> Manifest {
+        Manifest {
+            format: crate::manifest::FORMAT.into(),
+            solsim_version: env!("CARGO_PKG_VERSION").into(),
+            scenario: ScenarioId {
+                name: scenario.name.clone(),
+                sha256: scenario.sha256.clone(),
+            },
+            seed: self.seed,
+            runs: self.runs,
+            strategies: self.strategies.iter().map(|s| s.name().into()).collect(),
+            baseline: self.baseline.map(|b| b.name().into()),
+            segment: segment.map(|s| SegmentInfo {
+                from_sol: s.from_sol,
+                distance_m: s.distance_m,
+            }),
+            shard: self.shard.map(|s| {
+                let r = s.range(self.runs);
+                ShardInfo {
+                    index: s.index,
+                    count: s.count,
+                    first_run: r.start,
+                    end_run: r.end,
+                }
+            }),
+            state: State::Running,
+            chunk_runs: Some(self.chunk_runs),
+            chunks: Vec::new(),
+            files: Default::default(),
+        }
+    }
+}
+
+/// `summary.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct Summary {
+    /// [`crate::manifest::FORMAT`].
+    pub format: String,
+    /// The scenario.
+    pub scenario: ScenarioId,
+    /// The sweep's seed.
+    pub seed: u64,
+    /// Run indices `0..runs` of the whole sweep.
+    pub runs: u64,
+    /// The slice summarised (`None`: all runs).
+    pub shard: Option<ShardInfo>,
+    /// The study segment.
+    pub segment: Option<SegmentInfo>,
+    /// The statistics.
+    pub statistics: Statistics,
+}
+
+/// What a finished sweep (or merge) reports.
+#[derive(Debug, Clone)]
+pub struct SweepResult {
+    /// The directory.
+    pub dir: PathBuf,
+    /// The final manifest.
+    pub manifest: Manifest,
+    /// `summary.json`'s contents.
+    pub summary: Summary,
+    /// Run indices run by this call (runs × strategies were simulated).
+    pub runs_run: u64,
+    /// Run indices found committed by an earlier, interrupted call.
+    pub runs_resumed: u64,
+    /// Whether the directory already held the complete sweep.
+    pub already_complete: bool,
+}
+
+/// The study segment of a scenario.
+#[must_use]
+pub fn segment_of(scenario: &Scenario) -> Option<Segment> {
+    scenario.study_segment.map(|s| Segment {
+        from_sol: s.from_sol,
+        distance_m: s.distance_m,
+    })
+}
+
+/// Runs run `run` under every strategy: the rows, in strategy order.
+fn run_rows(
+    scenario: &Scenario,
+    spec: &SweepSpec,
+    segment: Option<Segment>,
+    run: u64,
+) -> Vec<(RunRow, Vec<SolRow>)> {
+    let seed = sim::seeds::run_seed(spec.seed, run);
+    spec.strategies
+        .par_iter()
+        .map(|&s| rows::rows_of(run, seed, &scenario.run(s, seed), segment))
+        .collect()
+}
+
+/// Runs `runs` under every strategy, in parallel over runs and strategies, and returns the
+/// run rows in run order (strategies in `spec` order): a sweep without files, for
+/// `solsim regress`'s statistical expectations.
+#[must_use]
+pub fn run_in_memory(scenario: &Scenario, spec: &SweepSpec, runs: Range<u64>) -> Vec<RunRow> {
+    let segment = segment_of(scenario);
+    runs.into_par_iter()
+        .flat_map_iter(|run| {
+            run_rows(scenario, spec, segment, run)
+                .into_iter()
+                .map(|(r, _)| r)
+        })
+        .collect()
+}
+
+fn chunk_name(kind: &str, first: u64, end: u64) -> String {
+    format!("{kind}-{first:010}-{end:010}.parquet")
+}
+
+fn io(path: &Path, what: &str, e: std::io::Error) -> SweepError {
+    SweepError::Io {
+        path: path.to_path_buf(),
+        what: what.into(),
+        message: e.to_string(),
+    }
+}
+
+fn metadata(manifest: &Manifest) -> Vec<(String, String)> {
+    let mut kv = vec![
+        ("solsim.format".into(), manifest.format.clone()),
+        ("solsim.version".into(), manifest.solsim_version.clone()),
+        ("solsim.scenario".into(), manifest.scenario.name.clone()),
+        (
+            "solsim.scenario_sha256".into(),
+            manifest.scenario.sha256.clone(),
+        ),
+        ("solsim.seed".into(), manifest.seed.to_string()),
+        ("solsim.runs".into(), manifest.runs.to_string()),
+        ("solsim.strategies".into(), manifest.strategies.join(",")),
+    ];
+    if let Some(s) = manifest.shard {
+        kv.push((
+            "solsim.shard".into(),
+            format!(
+                "{}/{} (runs {}..{})",
+                s.index, s.count, s.first_run, s.end_run
+            ),
+        ));
+    }
+    kv
+}
+
+/// Prepares `dir` for the sweep: a new or empty directory gets a fresh manifest; a directory
+/// holding this sweep resumes it (with `resume`), after removing what a kill left half-made.
+/// Returns the manifest to continue from.
+fn prepare(dir: &Path, fresh: Manifest, resume: bool) -> Result<Manifest, SweepError> {
+    if dir.exists() && !dir.is_dir() {
+        return Err(SweepError::option(
+            "--out",
+            "a directory",
+            format!("{} (not a directory)", dir.display()),
+        ));
+    }
+    std::fs::create_dir_all(dir).map_err(|e| io(dir, "cannot create the directory", e))?;
+    let Some(mut found) = Manifest::read(dir)? else {
+        let mut entries = std::fs::read_dir(dir).map_err(|e| io(dir, "cannot list", e))?;
+        if let Some(Ok(e)) = entries.next() {
+            return Err(SweepError::option(
+                "--out",
+                "a new or empty directory, or one holding a sweep (manifest.json)",
+                format!(
+                    "{} (holds {} and no sweep manifest)",
+                    dir.display(),
+                    e.file_name().to_string_lossy()
+                ),
+            ));
+        }
+        fresh.write(dir)?;
+        return Ok(fresh);
+    };
+    let path = dir.join(MANIFEST);
+    if !resume {
+        return Err(SweepError::option(
+            "--out",
+            "a new or empty directory (pass --resume to continue the sweep in it)",
+            format!("{} (holds a sweep: {})", dir.display(), path.display()),
+        ));
+    }
+    if let Some((field, this, there)) = fresh.differs_from(&found) {
+        return Err(SweepError::format(
+            &path,
+            field,
+            format!("{this} (this sweep's; resume with the same scenario and options)"),
+            there,
+        ));
+    }
+    if found.shard != fresh.shard {
+        return Err(SweepError::format(
+            &path,
+            "shard",
+            format!("{:?} (this sweep's)", fresh.shard),
+            format!("{:?}", found.shard),
+        ));
+    }
+    if found.state == State::Complete {
+        let _ = std::fs::remove_dir_all(dir.join("chunks"));
+        return Ok(found);
+    }
+    // Chunks are numbered by the chunk size they were made with; keep it.
+    if found.chunk_runs.is_none_or(|c| c == 0) {
+        return Err(SweepError::format(
+            &path,
+            "chunk_runs",
+            "a positive number while the sweep runs",
+            format!("{:?}", found.chunk_runs),
+        ));
+    }
+    // What a kill may have left: temporary files, and chunk files written before the manifest
+    // that would have listed them. Listed chunks must be intact, else they are run again.
+    let chunks = dir.join("chunks");
+    std::fs::create_dir_all(&chunks).map_err(|e| io(&chunks, "cannot create", e))?;
+    found.chunks.retain(|c| {
+        [("runs", &c.runs_sha256), ("sols", &c.sols_sha256)]
+            .iter()
+            .all(|(kind, sha)| {
+                sha256_file(&chunks.join(chunk_name(kind, c.first_run, c.end_run)))
+                    .is_ok_and(|got| &got == *sha)
+            })
+    });
+    let keep: BTreeSet<String> = found
+        .chunks
+        .iter()
+        .flat_map(|c| {
+            [
+                chunk_name("runs", c.first_run, c.end_run),
+                chunk_name("sols", c.first_run, c.end_run),
+            ]
+        })
+        .collect();
+    for d in [dir, chunks.as_path()] {
+        for e in std::fs::read_dir(d).map_err(|e| io(d, "cannot list", e))? {
+            let e = e.map_err(|e| io(d, "cannot list", e))?;
+            let name = e.file_name().to_string_lossy().into_owned();
+            let stale = name.ends_with(".tmp")
+                || (d == chunks.as_path() && !keep.contains(&name))
+                || (d == dir
+                    && ["runs.parquet", "sols.parquet", "summary.json"].contains(&name.as_str()));
+            if stale {
+                std::fs::remove_file(e.path())
+                    .map_err(|err| io(&e.path(), "cannot remove", err))?;
+            }
+        }
+    }
+    found.write(dir)?;
+    Ok(found)
+}
+
+/// Runs the sweep into `dir`, or resumes it (`resume`), and writes the output files.
+/// `progress(done, total)` is called with run indices done (including resumed ones) after each
+/// committed chunk.
+///
+/// # Errors
+/// The spec does not fit the scenario; the directory holds something else (or this sweep
+/// without `resume`, or another sweep); a write fails.
+pub fn run(
+    scenario: &Scenario,
+    spec: &SweepSpec,
+    dir: &Path,
+    resume: bool,
+    progress: &(dyn Fn(u64, u64) + Sync),
+) -> Result<SweepResult, SweepError> {
+    let segment = segment_of(scenario);
+    let manifest = prepare(dir, spec.manifest(scenario, segment), resume)?;
+    let range = spec.run_range();
+    let total = range.end - range.start;
+    if manifest.state == State::Complete {
+        let summary = summarise(&read_run_rows(&dir.join("runs.parquet"))?, &manifest);
+        progress(total, total);
+        return Ok(SweepResult {
+            dir: dir.to_path_buf(),
+            manifest,
+            summary,
+            runs_run: 0,
+            runs_resumed: total,
+            already_complete: true,
+        });
+    }
+    let chunk_runs = manifest.chunk_runs.unwrap_or(spec.chunk_runs);
+    let committed: BTreeSet<u64> = manifest.chunks.iter().map(|c| c.first_run).collect();
+    let pending: Vec<Range<u64>> = (range.start..range.end)
+        .step_by(chunk_runs.try_into().unwrap_or(usize::MAX))
+        .map(|first| first..(first + chunk_runs).min(range.end))
+        .filter(|r| !committed.contains(&r.start))
+        .collect();
+    let resumed = total - pending.iter().map(|r| r.end - r.start).sum::<u64>();
+    let done = AtomicU64::new(resumed);
+    progress(resumed, total);
+    let chunks_dir = dir.join("chunks");
+    std::fs::create_dir_all(&chunks_dir).map_err(|e| io(&chunks_dir, "cannot create", e))?;
+    let state = Mutex::new(manifest);
+    pending.par_iter().try_for_each(|chunk| {
+        let results: Vec<(RunRow, Vec<SolRow>)> = chunk
+            .clone()
+            .into_par_iter()
+            .flat_map_iter(|run| run_rows(scenario, spec, segment, run))
+            .collect();
+        let run_rows: Vec<RunRow> = results.iter().map(|(r, _)| r.clone()).collect();
+        let sol_rows: Vec<SolRow> = results.into_iter().flat_map(|(_, s)| s).collect();
+        commit_chunk(&chunks_dir, chunk, &run_rows, &sol_rows, &state, dir)?;
+        let n =
+            done.fetch_add(chunk.end - chunk.start, Ordering::Relaxed) + chunk.end - chunk.start;
+        progress(n, total);
+        Ok::<(), SweepError>(())
+    })?;
+    let manifest = state
+        .into_inner()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    let sources: Vec<(PathBuf, PathBuf)> = manifest
+        .chunks
+        .iter()
+        .map(|c| {
+            (
+                chunks_dir.join(chunk_name("runs", c.first_run, c.end_run)),
+                chunks_dir.join(chunk_name("sols", c.first_run, c.end_run)),
+            )
+        })
+        .collect();
+    let (manifest, summary) = assemble(dir, &sources, manifest)?;
+    std::fs::remove_dir_all(&chunks_dir).map_err(|e| io(&chunks_dir, "cannot remove", e))?;
+    Ok(SweepResult {
+        dir: dir.to_path_buf(),
+        manifest,
+        summary,
+        runs_run: total - resumed,
+        runs_resumed: resumed,
+        already_complete: false,
+    })
+}
+
+fn commit_chunk(
+    chunks_dir: &Path,
+    chunk: &Range<u64>,
+    run_rows: &[RunRow],
+    sol_rows: &[SolRow],
+    state: &Mutex<Manifest>,
+    dir: &Path,
+) -> Result<(), SweepError> {
+    let bug = |e: arrow_schema::ArrowError| SweepError::Io {
+        path: chunks_dir.to_path_buf(),
+        what: "cannot build the rows of a chunk".into(),
+        message: e.to_string(),
+    };
+    let runs_path = chunks_dir.join(chunk_name("runs", chunk.start, chunk.end));
+    let sols_path = chunks_dir.join(chunk_name("sols", chunk.start, chunk.end));
+    let mut w = TableWriter::create(&runs_path, rows::runs_schema(), &[])?;
+    w.push(&rows::runs_batch(run_rows).map_err(bug)?)?;
+    w.finish()?;
+    let mut w = TableWriter::create(&sols_path, rows::sols_schema(), &[])?;
+    w.push(&rows::sols_batch(sol_rows).map_err(bug)?)?;
+    w.finish()?;
+    let entry = ChunkEntry {
+        first_run: chunk.start,
+        end_run: chunk.end,
+        runs_sha256: sha256_file(&runs_path)?,
+        sols_sha256: sha256_file(&sols_path)?,
+    };
+    let mut m = state
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    m.chunks.push(entry);
+    m.chunks.sort_by_key(|c| c.first_run);
+    m.write(dir)
+}
+
+fn read_run_rows(path: &Path) -> Result<Vec<RunRow>, SweepError> {
+    let mut rows = Vec::new();
+    for batch in read_table(path, &rows::runs_schema())? {
+        rows.extend(rows::run_rows_from(&batch).map_err(|e| {
+            SweepError::format(path, "(rows)", "rows of a solsim runs table", e.to_string())
+        })?);
+    }
+    Ok(rows)
+}
+
+fn summarise(rows: &[RunRow], manifest: &Manifest) -> Summary {
+    let strategies: Vec<Strategy> = manifest
+        .strategies
+        .iter()
+        .filter_map(|s| Strategy::from_name(s))
+        .collect();
+    let baseline = manifest.baseline.as_deref().and_then(Strategy::from_name);
+    Summary {
+        format: manifest.format.clone(),
+        scenario: manifest.scenario.clone(),
+        seed: manifest.seed,
+        runs: manifest.runs,
+        shard: manifest.shard,
+        segment: manifest.segment,
+        statistics: summary::statistics(
+            rows,
+            &strategies,
+            baseline,
+            manifest.segment.is_some(),
+            manifest.seed,
+        ),
+    }
+}
+
+/// Writes `runs.parquet`, `sols.parquet`, `summary.json` and the complete manifest from the
+/// `(runs, sols)` table pairs in `sources`, given in run order.
+fn assemble(
+    dir: &Path,
+    sources: &[(PathBuf, PathBuf)],
+    mut manifest: Manifest,
+) -> Result<(Manifest, Summary), SweepError> {
+    manifest.state = State::Complete;
+    manifest.chunk_runs = None;
+    manifest.chunks.clear();
+    manifest.files.clear();
+    let kv = metadata(&manifest);
+    let runs_out = dir.join("runs.parquet");
+    let sols_out = dir.join("sols.parquet");
+    let mut all_runs: Vec<RunRow> = Vec::new();
+    let mut w = TableWriter::create(&runs_out, rows::runs_schema(), &kv)?;
+    for (runs, _) in sources {
+        for batch in read_table(runs, &rows::runs_schema())? {
+            all_runs.extend(rows::run_rows_from(&batch).map_err(|e| {
+                SweepError::format(runs, "(rows)", "rows of a solsim runs table", e.to_string())
+            })?);
+            w.push(&batch)?;
+        }
+    }
+    w.finish()?;
+    let mut w = TableWriter::create(&sols_out, rows::sols_schema(), &kv)?;
+    for (_, sols) in sources {
+        for batch in read_table(sols, &rows::sols_schema())? {
+            w.push(&batch)?;
+        }
+    }
+    w.finish()?;
+    let summary = summarise(&all_runs, &manifest);
+    let mut text = serde_json::to_string_pretty(&summary).map_err(|e| SweepError::Io {
+        path: dir.join("summary.json"),
+        what: "cannot serialise".into(),
+        message: e.to_string(),
+    })?;
+    text.push('\n');
+    write_durably(&dir.join("summary.json"), text.as_bytes())?;
+    for name in ["runs.parquet", "sols.parquet", "summary.json"] {
+        manifest
+            .files
+            .insert(name.into(), sha256_file(&dir.join(name))?);
+    }
+    manifest.write(dir)?;
+    Ok((manifest, summary))
+}
+
+/// Merges complete shard directories (any order) into `out`, writing exactly the files one
+/// unsharded sweep writes.
+///
+/// # Errors
+/// A directory that holds no complete sweep; directories of different sweeps; shards that
+/// overlap or leave runs out; `out` not new or empty.
+pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepResult, SweepError> {
+    if dirs.is_empty() {
+        return Err(SweepError::option(
+            "DIR",
+            "at least one shard directory",
+            "none",
+        ));
+    }
+    let mut parts: Vec<(PathBuf, Manifest)> = Vec::new();
+    for d in dirs {
+        let path = d.join(MANIFEST);
+        let m = Manifest::read(d)?.ok_or_else(|| {
+            SweepError::format(&path, "(file)", "a sweep manifest", "no such file")
+        })?;
+        if m.state != State::Complete {
+            return Err(SweepError::format(
+                &path,
+                "state",
+                "\"complete\" (finish the shard with --resume first)",
+                "\"running\"",
+            ));
+        }
+        if let Some((_, first)) = parts.first()
+            && let Some((field, a, b)) = first.differs_from(&m)
+        {
+            return Err(SweepError::format(
+                &path,
+                field,
+                format!("{a} (as in {})", parts[0].0.join(MANIFEST).display()),
+                b,
+            ));
+        }
+        for (name, sha) in &m.files {
+            let got = sha256_file(&d.join(name))?;
+            if &got != sha {
+                return Err(SweepError::format(
+                    d.join(name),
+                    "(sha256)",
+                    format!("{sha} (as listed in {})", path.display()),
+                    got,
+                ));
+            }
+        }
+        parts.push((d.clone(), m));
+    }
+    let range = |m: &Manifest| m.shard.map_or(0..m.runs, |s| s.first_run..s.end_run);
+    parts.sort_by_key(|(_, m)| range(m).start);
+    let runs = parts[0].1.runs;
+    let mut next = 0;
+    for (d, m) in &parts {
+        let r = range(m);
+        if r.start != next {
+            let what = if r.start < next {
+                "overlap"
+            } else {
+                "leave runs out"
+            };
+            return Err(SweepError::format(
+                d.join(MANIFEST),
+                "shard",
+                format!("a shard starting at run {next} (the shards {what})"),
+                format!("runs {}..{}", r.start, r.end),
+            ));
+        }
+        next = r.end;
+    }
+    if next != runs {
+        return Err(SweepError::option(
+            "DIR",
+            format!("shards covering runs 0..{runs}"),
+            format!("shards covering runs 0..{next}"),
+        ));
+    }
+    if out.exists() {
+        let empty = std::fs::read_dir(out)
+            .map_err(|e| io(out, "cannot list", e))?
+            .next()
+            .is_none();
+        if !empty {
+            return Err(SweepError::option(
+                "--out",
+                "a new or empty directory",
+                format!("{} (not empty)", out.display()),
+            ));
+        }
+    }
+    std::fs::create_dir_all(out).map_err(|e| io(out, "cannot create the directory", e))?;
+    let mut manifest = parts[0].1.clone();
+    manifest.shard = None;
+    let sources: Vec<(PathBuf, PathBuf)> = parts
+        .iter()
+        .map(|(d, _)| (d.join("runs.parquet"), d.join("sols.parquet")))
+        .collect();
+    // A placeholder manifest first, so an interrupted merge leaves a directory that says what
+    // it is (running) rather than loose files.
+    let mut running = manifest.clone();
+    running.state = State::Running;
+    running.files.clear();
+    running.chunk_runs = Some(DEFAULT_CHUNK_RUNS);
+    running.write(out)?;
+    let _ = std::fs::remove_file(tmp_path(&out.join(MANIFEST)));
+    let (manifest, summary) = assemble(out, &sources, manifest)?;
+    Ok(SweepResult {
+        dir: out.to_path_buf(),
+        manifest,
+        summary,
+        runs_run: 0,
+        runs_resumed: runs,
+        already_complete: false,
+    })
+}

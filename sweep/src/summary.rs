@@ -1,0 +1,254 @@
+//! What a study reports (`summary.json` and the printed table): per strategy the mean,
+//! median, p5 and p95 of each figure and the rates with 95 % Wilson intervals; against the
+//! baseline strategy the paired per-run difference of each figure with a seeded 95 % percentile
+//! bootstrap interval.
+
+use rayon::prelude::*;
+use serde::Serialize;
+use sim::Strategy;
+
+use crate::rows::RunRow;
+use crate::stats::{self, Interval, PairedDifference, Spread};
+pub use study::figure::{Figure, RateKind};
+
+/// Confidence of every interval.
+pub const CONFIDENCE: f64 = 0.95;
+/// Bootstrap resamples of a paired difference.
+pub const BOOTSTRAP_RESAMPLES: usize = 10_000;
+/// Salt of the bootstrap seeds under the sweep's seed (see [`bootstrap_seed`]).
+const BOOTSTRAP_SALT: u64 = 0x424f_4f54_0000_0000;
+
+/// The value of `figure` in a run (`None`: the goal or the segment was not reached).
+#[must_use]
+pub fn figure_of(figure: Figure, r: &RunRow) -> Option<f64> {
+    match figure {
+        Figure::SolsToGoal => r.sols_to_goal.map(f64::from),
+        Figure::SegmentSols => r.segment_sols.map(f64::from),
+        Figure::DriveSols => Some(f64::from(r.drive_sols)),
+        Figure::DistanceM => Some(r.distance_m),
+        Figure::NoPathFaults => Some(f64::from(r.no_path_faults)),
+        Figure::Faults => Some(f64::from(r.faults)),
+        Figure::MaxUncertaintyM => Some(r.max_uncertainty_m),
+        Figure::OnboardApplied => Some(f64::from(r.onboard_localizations_applied)),
+        Figure::OnboardRejected => Some(f64::from(r.onboard_localizations_rejected)),
+        Figure::MaxTruthErrorM => Some(r.max_truth_error_m),
+    }
+}
+
+/// Whether a run counts towards `rate`.
+#[must_use]
+pub fn counts_for(rate: RateKind, r: &RunRow) -> bool {
+    match rate {
+        RateKind::NoPath => r.no_path_faults > 0,
+        RateKind::Fault => r.faults > 0,
+        RateKind::TruthOutsideDisc => r.truth_outside_disc_sols > 0,
+        RateKind::GoalReached => r.goal_reached,
+    }
+}
+
+/// A rate with its Wilson interval.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Rate {
+    /// `no_path_rate`, `fault_rate`, `truth_outside_disc_rate`, `goal_reached_rate`.
+    pub name: String,
+    /// Runs that count.
+    pub count: u64,
+    /// Runs.
+    pub runs: u64,
+    /// `count / runs`.
+    pub rate: f64,
+    /// 95 % Wilson score interval.
+    pub interval: Interval,
+}
+
+/// A figure's spread over the runs where it has a value.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FigureSummary {
+    /// The `runs.parquet` column.
+    pub name: String,
+    /// Mean, median, p5, p95 and the number of runs with a value (`None`: no run has one).
+    pub spread: Option<Spread>,
+}
+
+/// One strategy's figures.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StrategySummary {
+    /// The strategy.
+    pub strategy: String,
+    /// Runs.
+    pub runs: u64,
+    /// Rates.
+    pub rates: Vec<Rate>,
+    /// Figures.
+    pub figures: Vec<FigureSummary>,
+}
+
+/// A strategy's paired difference from the baseline on one figure.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PairedSummary {
+    /// The strategy.
+    pub strategy: String,
+    /// The `runs.parquet` column.
+    pub figure: String,
+    /// Mean of (strategy − baseline) over the run indices where both have a value, with its
+    /// 95 % bootstrap interval (`None`: no such run).
+    pub difference: Option<PairedDifference>,
+}
+
+/// The statistics of a sweep.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Statistics {
+    /// Confidence of the intervals.
+    pub confidence: f64,
+    /// Wilson score intervals for rates.
+    pub rate_interval: String,
+    /// Bootstrap resamples of each paired difference.
+    pub bootstrap_resamples: usize,
+    /// The strategy the paired differences are taken against.
+    pub baseline: Option<String>,
+    /// Per strategy, in the sweep's order.
+    pub strategies: Vec<StrategySummary>,
+    /// Paired differences from the baseline, per strategy and figure.
+    pub paired: Vec<PairedSummary>,
+}
+
+/// The seed of the bootstrap of `strategy` against the baseline on `figure`: a fixed function
+/// of the sweep's seed, so the intervals are as reproducible as the runs.
+#[must_use]
+pub fn bootstrap_seed(sweep_seed: u64, strategy: Strategy, figure: Figure) -> u64 {
+    let k = Figure::ALL.iter().position(|f| *f == figure).unwrap_or(0) as u64;
+    maps::procedural::noise::sub_seed(sweep_seed, BOOTSTRAP_SALT + 16 * k + strategy.stream_id())
+}
+
+/// The figures of a sweep with or without a study segment.
+#[must_use]
+pub fn figures(has_segment: bool) -> Vec<Figure> {
+    Figure::ALL
+        .into_iter()
+        .filter(|f| has_segment || *f != Figure::SegmentSols)
+        .collect()
+}
+
+/// Per-strategy rates and spreads, and paired differences against `baseline` (when it is one
+/// of `strategies`). `rows` are in run order, strategies in sweep order within a run.
+#[must_use]
+pub fn statistics(
+    rows: &[RunRow],
+    strategies: &[Strategy],
+    baseline: Option<Strategy>,
+    has_segment: bool,
+    sweep_seed: u64,
+) -> Statistics {
+    let figures = figures(has_segment);
+    let of = |s: Strategy| -> Vec<&RunRow> { rows.iter().filter(|r| r.strategy == s).collect() };
+    let per: Vec<StrategySummary> = strategies
+        .iter()
+        .map(|&s| {
+            let runs = of(s);
+            let n = runs.len() as u64;
+            StrategySummary {
+                strategy: s.name().into(),
+                runs: n,
+                rates: RateKind::ALL
+                    .iter()
+                    .filter_map(|k| {
+                        let count = runs.iter().filter(|r| counts_for(*k, r)).count() as u64;
+                        stats::wilson(count, n, CONFIDENCE).map(|interval| Rate {
+                            name: k.name().into(),
+                            count,
+                            runs: n,
+                            rate: count as f64 / n as f64,
+                            interval,
+                        })
+                    })
+                    .collect(),
+                figures: figures
+                    .iter()
+                    .map(|f| {
+                        let values: Vec<f64> =
+                            runs.iter().filter_map(|r| figure_of(*f, r)).collect();
+                        FigureSummary {
+                            name: f.name().into(),
+                            spread: stats::spread(&values),
+                        }
+                    })
+                    .collect(),
+            }
+        })
+        .collect();
+    let paired = match baseline.filter(|b| strategies.contains(b)) {
+        None => Vec::new(),
+        Some(b) => {
+            let base: std::collections::BTreeMap<u64, &RunRow> =
+                of(b).into_iter().map(|r| (r.run_index, r)).collect();
+            let jobs: Vec<(Strategy, Figure)> = strategies
+                .iter()
+                .filter(|&&s| s != b)
+                .flat_map(|&s| figures.iter().map(move |&f| (s, f)))
+                .collect();
+            jobs.par_iter()
+                .map(|&(s, f)| {
+                    let diffs: Vec<f64> = of(s)
+                        .iter()
+                        .filter_map(|r| {
+                            let mine = figure_of(f, r)?;
+                            let theirs = figure_of(f, base.get(&r.run_index)?)?;
+                            Some(mine - theirs)
+                        })
+                        .collect();
+                    PairedSummary {
+                        strategy: s.name().into(),
+                        figure: f.name().into(),
+                        difference: stats::paired_bootstrap(
+                            &diffs,
+                            BOOTSTRAP_RESAMPLES,
+                            CONFIDENCE,
+                            bootstrap_seed(sweep_seed, s, f),
+                        ),
+                    }
+                })
+                .collect()
+        }
+    };
+    Statistics {
+        confidence: CONFIDENCE,
+        rate_interval: "wilson".into(),
+        bootstrap_resamples: BOOTSTRAP_RESAMPLES,
+        baseline: baseline.map(|b| b.name().into()),
+        strategies: per,
+        paired,
+    }
+}
+
+impl Statistics {
+    /// The summary of `strategy`.
+    #[must_use]
+    pub fn strategy(&self, strategy: &str) -> Option<&StrategySummary> {
+        self.strategies.iter().find(|s| s.strategy == strategy)
+    }
+
+    /// The paired difference of `strategy` from the baseline on `figure`.
+    #[must_use]
+    pub fn paired(&self, strategy: &str, figure: &str) -> Option<&PairedSummary> {
+        self.paired
+            .iter()
+            .find(|p| p.strategy == strategy && p.figure == figure)
+    }
+}
+
+impl StrategySummary {
+    /// The rate named `name`.
+    #[must_use]
+    pub fn rate(&self, name: &str) -> Option<&Rate> {
+        self.rates.iter().find(|r| r.name == name)
+    }
+
+    /// The spread of the figure named `name`.
+    #[must_use]
+    pub fn figure(&self, name: &str) -> Option<&Spread> {
+        self.figures
+            .iter()
+            .find(|f| f.name == name)
+            .and_then(|f| f.spread.as_ref())
+    }
+}
