@@ -6,6 +6,8 @@
 //! The file formats, their validation and the study API live in the [`study`] crate; these
 //! modules are the commands: argument structs, orchestration and printing.
 //!
+//! - [`cmd_sweep`]: Monte Carlo sweeps, their printed statistics, shard merges and Slurm
+//!   submit scripts (the engine is the [`sweep`] crate).
 //! - [`regress`]: runs every scenario's `[[expect]]` entries; text and JUnit reports.
 //! - [`report`]: JSON, per-sol CSV, GeoJSON outputs and terminal tables.
 //! - [`output_set`]: output directories replaced whole ([`output_set::OutputSet`]), never a
@@ -17,6 +19,7 @@ pub mod cmd_localize_rasters;
 pub mod cmd_map;
 pub mod cmd_package;
 pub mod cmd_plan;
+pub mod cmd_sweep;
 pub mod cmd_zones;
 pub mod output_set;
 pub mod regress;

@@ -89,6 +89,18 @@ enum Command {
     /// validator's verdict. Deterministic under the node budget (default 100000 nodes); with
     /// --time-budget-ms the output may vary between runs. Exit 2 on a malformed file.
     Plan(solsim::cmd_plan::PlanArgs),
+    /// Monte Carlo study: run a scenario over run indices 0..N under several strategies.
+    ///
+    /// Every strategy of run i sees the same world (common random numbers), so differences are
+    /// paired. Prints per strategy the NO_PATH, any-fault, truth-outside-the-disc and
+    /// goal-reached rates with 95 % Wilson intervals and the mean (p5–p95) of sols to goal,
+    /// metres driven and the largest uncertainty; then each strategy's paired difference from
+    /// the baseline (default ground) with a 95 % bootstrap interval. Writes runs.parquet (one
+    /// row per run × strategy), sols.parquet (per sol), summary.json and manifest.json to
+    /// --out. Parallel over runs; the files are identical whatever the thread count; --resume
+    /// continues after a kill; --shard K/N, `sweep merge` and `sweep slurm` spread a sweep over
+    /// machines.
+    Sweep(Box<solsim::cmd_sweep::SweepArgs>),
 }
 
 #[derive(Subcommand)]
@@ -333,6 +345,10 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
         }
         Command::Plan(a) => {
             solsim::cmd_plan::run(&a, stdout)?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Sweep(a) => {
+            solsim::cmd_sweep::run(&a, budget, stdout)?;
             Ok(ExitCode::SUCCESS)
         }
         Command::LocalizeBench(a) => {

@@ -17,6 +17,9 @@ pub struct CaseResult {
     pub what: String,
     /// Failed checks (empty = pass).
     pub mismatches: Vec<Mismatch>,
+    /// What a statistical expectation measured (rates and paired differences with their
+    /// 95 % intervals), printed beside it; empty for checks of one run.
+    pub measured: Vec<String>,
     /// Seconds spent running the scenario (shared by its cases).
     pub seconds: f64,
 }
@@ -32,19 +35,45 @@ pub fn check_scenario(
     let start = std::time::Instant::now();
     let scenario = Scenario::load_within(path, budget)?;
     let checked = scenario.check_expectations();
-    let seconds = start.elapsed().as_secs_f64();
-    Ok(scenario
+    let one_run_s = start.elapsed().as_secs_f64();
+    let mut results: Vec<(usize, CaseResult)> = scenario
         .expectations
         .iter()
         .zip(checked)
-        .map(|(e, mismatches)| CaseResult {
-            scenario: path.to_path_buf(),
-            case: format!("{}/expect[{}]", scenario.name, e.index),
-            what: e.what.clone(),
-            mismatches,
-            seconds,
+        .map(|(e, mismatches)| {
+            let case = CaseResult {
+                scenario: path.to_path_buf(),
+                case: format!("{}/expect[{}]", scenario.name, e.index),
+                what: e.what.clone(),
+                mismatches,
+                measured: Vec::new(),
+                seconds: one_run_s,
+            };
+            (e.index, case)
         })
-        .collect())
+        .collect();
+    let start = std::time::Instant::now();
+    let swept = sweep::expect::check_statistical(&scenario);
+    let sweep_s = start.elapsed().as_secs_f64();
+    results.extend(
+        scenario
+            .statistical_expectations
+            .iter()
+            .zip(swept)
+            .map(|(e, r)| {
+                let case = CaseResult {
+                    scenario: path.to_path_buf(),
+                    case: format!("{}/expect[{}]", scenario.name, e.index),
+                    what: format!("{} (over {} runs)", e.what, e.runs),
+                    mismatches: r.mismatches,
+                    measured: r.measured,
+                    seconds: sweep_s,
+                };
+                (e.index, case)
+            }),
+    );
+    results.sort_by_key(|(i, _)| *i);
+    Ok(results.into_iter().map(|(_, c)| c).collect())
 }
 
 /// The scenario files of a directory (`*.toml`, sorted).
@@ -68,6 +97,9 @@ pub fn text_report(results: &[CaseResult]) -> String {
             "FAIL"
         };
         let _ = writeln!(s, "{status} {}  {}", r.case, r.what);
+        for m in &r.measured {
+            let _ = writeln!(s, "       {m}");
+        }
         for m in &r.mismatches {
             let _ = writeln!(
                 s,

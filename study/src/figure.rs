@@ -10,6 +10,8 @@ pub enum Figure {
     SolsToGoal,
     /// `segment_sols`: sols to cover the study segment (runs that covered it).
     SegmentSols,
+    /// `segment_distance_m`: metres driven from the study segment's first sol on.
+    SegmentDistanceM,
     /// `drive_sols`.
     DriveSols,
     /// `distance_m`.
@@ -30,9 +32,10 @@ pub enum Figure {
 
 impl Figure {
     /// Every figure, in report order.
-    pub const ALL: [Figure; 10] = [
+    pub const ALL: [Figure; 11] = [
         Figure::SolsToGoal,
         Figure::SegmentSols,
+        Figure::SegmentDistanceM,
         Figure::DriveSols,
         Figure::DistanceM,
         Figure::NoPathFaults,
@@ -49,6 +52,7 @@ impl Figure {
         match self {
             Figure::SolsToGoal => "sols_to_goal",
             Figure::SegmentSols => "segment_sols",
+            Figure::SegmentDistanceM => "segment_distance_m",
             Figure::DriveSols => "drive_sols",
             Figure::DistanceM => "distance_m",
             Figure::NoPathFaults => "no_path_faults",

@@ -12,3 +12,4 @@ pub mod summary;
 
 pub use engine::{Shard, SweepResult, SweepSpec, merge, run};
 pub use error::SweepError;
+pub mod expect;

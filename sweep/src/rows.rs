@@ -69,6 +69,9 @@ pub struct RunRow {
     pub max_truth_error_m: f64,
     /// Sols to cover the study segment (`None`: no segment, or not covered).
     pub segment_sols: Option<u32>,
+    /// Metres driven from the study segment's first sol to the end of the calendar (`None`:
+    /// no segment).
+    pub segment_distance_m: Option<f64>,
 }
 
 /// One sol of one run of one strategy: a row of `sols.parquet`.
@@ -172,6 +175,14 @@ pub fn rows_of(
             .map(|s| s.truth_error_m)
             .fold(0.0, f64::max),
         segment_sols: segment.and_then(|g| outcome.sols_to_cover(g.from_sol, g.distance_m)),
+        segment_distance_m: segment.map(|g| {
+            outcome
+                .sols
+                .iter()
+                .filter(|s| s.sol >= g.from_sol)
+                .map(|s| s.distance_m)
+                .sum()
+        }),
     };
     let sols = outcome
         .sols
@@ -241,6 +252,7 @@ pub fn runs_schema() -> SchemaRef {
         field("truth_outside_disc_sols", UInt32, false),
         field("max_truth_error_m", Float64, false),
         field("segment_sols", UInt32, true),
+        field("segment_distance_m", Float64, true),
     ]))
 }
 
@@ -337,6 +349,7 @@ pub fn runs_batch(rows: &[RunRow]) -> Result<RecordBatch, ArrowError> {
             u32s(rows, |r| Some(r.truth_outside_disc_sols)),
             f64s(rows, |r| Some(r.max_truth_error_m)),
             u32s(rows, |r| r.segment_sols),
+            f64s(rows, |r| r.segment_distance_m),
         ],
     )
 }
@@ -413,6 +426,7 @@ pub fn run_rows_from(batch: &RecordBatch) -> Result<Vec<RunRow>, ArrowError> {
         segment,
     ] = [5, 8, 9, 10, 11, 13, 14, 15, 16, 18].map(u32c);
     let [distance, remaining, max_r, max_truth] = [6, 7, 12, 17].map(f64c);
+    let segment_distance = f64c(19);
     (0..batch.num_rows())
         .map(|i| {
             let name = strategy.value(i);
@@ -437,6 +451,8 @@ pub fn run_rows_from(batch: &RecordBatch) -> Result<Vec<RunRow>, ArrowError> {
                 truth_outside_disc_sols: outside.value(i),
                 max_truth_error_m: max_truth.value(i),
                 segment_sols: opt(&segment, i),
+                segment_distance_m: (!segment_distance.is_null(i))
+                    .then(|| segment_distance.value(i)),
             })
         })
         .collect()

@@ -24,6 +24,7 @@ pub fn figure_of(figure: Figure, r: &RunRow) -> Option<f64> {
     match figure {
         Figure::SolsToGoal => r.sols_to_goal.map(f64::from),
         Figure::SegmentSols => r.segment_sols.map(f64::from),
+        Figure::SegmentDistanceM => r.segment_distance_m,
         Figure::DriveSols => Some(f64::from(r.drive_sols)),
         Figure::DistanceM => Some(r.distance_m),
         Figure::NoPathFaults => Some(f64::from(r.no_path_faults)),
@@ -125,7 +126,7 @@ pub fn bootstrap_seed(sweep_seed: u64, strategy: Strategy, figure: Figure) -> u6
 pub fn figures(has_segment: bool) -> Vec<Figure> {
     Figure::ALL
         .into_iter()
-        .filter(|f| has_segment || *f != Figure::SegmentSols)
+        .filter(|f| has_segment || !matches!(f, Figure::SegmentSols | Figure::SegmentDistanceM))
         .collect()
 }
 

@@ -1,0 +1,542 @@
+//! `solsim sweep`: Monte Carlo studies — run a scenario over run indices `0..N` under several
+//! strategies, write `runs.parquet`, `sols.parquet`, `summary.json` and `manifest.json`, print
+//! the rates, spreads and paired differences; `sweep merge` joins shard directories;
+//! `sweep slurm` prints a Slurm job-array submit script.
+
+use std::fmt::Write as _;
+use std::io::{IsTerminal as _, Write};
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
+
+use anyhow::Context as _;
+use clap::{Args, Subcommand};
+use maps::MemoryBudget;
+use sim::Strategy;
+use study::Scenario;
+use sweep::engine::{DEFAULT_CHUNK_RUNS, Shard, SweepResult, SweepSpec};
+use sweep::summary::{Figure, RateKind, Statistics};
+
+/// `solsim sweep`.
+#[derive(Args)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
+pub struct SweepArgs {
+    #[command(subcommand)]
+    command: Option<SweepCommand>,
+    #[command(flatten)]
+    run: SweepRunArgs,
+}
+
+#[derive(Subcommand)]
+enum SweepCommand {
+    /// Merge complete shard directories (`--shard K/N` sweeps) into the files one unsharded
+    /// sweep writes, byte for byte.
+    Merge(MergeArgs),
+    /// Print a Slurm submit script: a job array with one shard per task, then a merge job
+    /// that runs when every shard has succeeded. Run it with bash on the cluster's login node.
+    Slurm(SlurmArgs),
+}
+
+/// What is swept: shared by `sweep` and `sweep slurm`.
+#[derive(Args, Clone)]
+struct SweepWhat {
+    /// Run indices 0..RUNS of every strategy. Run 0 uses the scenario's seed; run i ≥ 1 a seed
+    /// derived from it (sim::seeds::run_seed), the same for every strategy.
+    #[arg(long, value_name = "N", required = true)]
+    runs: Option<u64>,
+    /// Comma-separated strategies (replay, ground, onboard, extension, extension+onboard)
+    /// [default: all that apply; replay only with historic drives]
+    #[arg(long, value_name = "LIST", value_delimiter = ',')]
+    strategies: Option<Vec<String>>,
+    /// The sweep's seed [default: the scenario's seed]
+    #[arg(long, value_name = "SEED")]
+    seed: Option<u64>,
+    /// Strategy the paired differences are taken against; `none` for none.
+    #[arg(long, value_name = "STRATEGY", default_value = "ground")]
+    baseline: String,
+}
+
+#[derive(Args)]
+struct SweepRunArgs {
+    /// Scenario file (TOML).
+    #[arg(required = true)]
+    scenario: Option<PathBuf>,
+    #[command(flatten)]
+    what: SweepWhat,
+    /// Worker threads [default: one per core]. The files do not depend on it.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=1024))]
+    threads: Option<u64>,
+    /// Output directory: new, empty, or (with --resume) this sweep's
+    /// [default: sweep-out/<scenario name>, or sweep-out/<name>-shard-K-of-N]
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// Continue the sweep in --out after an interruption: committed chunks are kept, the rest
+    /// is run; the files equal an uninterrupted sweep's.
+    #[arg(long)]
+    resume: bool,
+    /// Run only slice K of N of the run indices (K = 0..N-1): runs K·RUNS/N .. (K+1)·RUNS/N.
+    #[arg(long, value_name = "K/N")]
+    shard: Option<String>,
+    /// Runs per committed chunk (what a kill can lose).
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_CHUNK_RUNS,
+          value_parser = clap::value_parser!(u64).range(1..=100_000))]
+    chunk_runs: u64,
+    /// No progress and no table: only errors.
+    #[arg(long, short)]
+    quiet: bool,
+}
+
+#[derive(Args)]
+struct MergeArgs {
+    /// Shard directories (complete `solsim sweep --shard K/N` outputs), in any order.
+    #[arg(required = true, value_name = "DIR")]
+    dirs: Vec<PathBuf>,
+    /// Output directory (new or empty).
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
+    /// Print nothing but errors.
+    #[arg(long, short)]
+    quiet: bool,
+}
+
+#[derive(Args)]
+struct SlurmArgs {
+    /// Scenario file (TOML).
+    scenario: PathBuf,
+    #[command(flatten)]
+    what: SweepWhat,
+    /// Shards: array tasks 0..SHARDS.
+    #[arg(long, value_name = "M", value_parser = clap::value_parser!(u64).range(1..=100_000))]
+    shards: u64,
+    /// Directory for the shards (OUT/shard-K-of-M), the merged sweep (OUT/merged) and the Slurm
+    /// logs (OUT/slurm) [default: sweep-out/<scenario name>-slurm]
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// Threads per array task (sbatch --cpus-per-task).
+    #[arg(long, value_name = "N", default_value_t = 1,
+          value_parser = clap::value_parser!(u64).range(1..=1024))]
+    threads_per_task: u64,
+    /// Slurm partition [default: the cluster's default].
+    #[arg(long, value_name = "NAME")]
+    partition: Option<String>,
+    /// Time limit per array task (sbatch --time, e.g. 01:00:00) [default: the partition's].
+    #[arg(long, value_name = "TIME")]
+    time: Option<String>,
+    /// The solsim binary the jobs run [default: this one].
+    #[arg(long, value_name = "PATH")]
+    solsim: Option<PathBuf>,
+}
+
+/// Runs `solsim sweep …`.
+///
+/// # Errors
+/// Bad input (scenario, options, a directory that holds something else) or a write error.
+pub fn run(args: &SweepArgs, budget: MemoryBudget, stdout: &mut dyn Write) -> anyhow::Result<()> {
+    match &args.command {
+        Some(SweepCommand::Merge(m)) => merge(m, stdout),
+        Some(SweepCommand::Slurm(s)) => slurm(s, budget, stdout),
+        None => sweep(&args.run, budget, stdout),
+    }
+}
+
+fn strategy(option: &str, name: &str) -> anyhow::Result<Strategy> {
+    Strategy::from_name(name.trim()).ok_or_else(|| {
+        anyhow::anyhow!(
+            "{option}: expected one of {}, got {name:?}",
+            Strategy::ALL.map(Strategy::name).join(", ")
+        )
+    })
+}
+
+fn spec(what: &SweepWhat, scenario: &Scenario) -> anyhow::Result<SweepSpec> {
+    let mut spec = SweepSpec::new(scenario, what.runs.unwrap_or(0));
+    if let Some(list) = &what.strategies {
+        spec.strategies = list
+            .iter()
+            .map(|s| strategy("--strategies", s))
+            .collect::<anyhow::Result<_>>()?;
+    }
+    if let Some(seed) = what.seed {
+        spec.seed = seed;
+    }
+    spec.baseline = match what.baseline.as_str() {
+        "none" => None,
+        name => {
+            let b = strategy("--baseline", name)?;
+            // The default baseline is dropped quietly when it is not swept.
+            if what.baseline == "ground" && !spec.strategies.contains(&b) {
+                None
+            } else {
+                Some(b)
+            }
+        }
+    };
+    Ok(spec)
+}
+
+/// Prints progress to stderr: a bar on a terminal, a plain line every 10 s otherwise.
+struct Progress {
+    bar: Option<indicatif::ProgressBar>,
+    plain: Option<Mutex<Instant>>,
+    started: Instant,
+    first_done: Mutex<Option<u64>>,
+}
+
+impl Progress {
+    fn new(quiet: bool) -> Self {
+        let tty = std::io::stderr().is_terminal();
+        let bar = (!quiet && tty).then(|| {
+            let bar = indicatif::ProgressBar::new(0);
+            bar.set_style(
+                indicatif::ProgressStyle::with_template(
+                    "{bar:40} {pos}/{len} runs  {per_sec}  ETA {eta}",
+                )
+                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+            );
+            bar
+        });
+        Self {
+            bar,
+            plain: (!quiet && !tty).then(|| Mutex::new(Instant::now())),
+            started: Instant::now(),
+            first_done: Mutex::new(None),
+        }
+    }
+
+    fn update(&self, done: u64, total: u64) {
+        let first = *self
+            .first_done
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .get_or_insert(done);
+        if let Some(bar) = &self.bar {
+            bar.set_length(total);
+            bar.set_position(done);
+        }
+        if let Some(last) = &self.plain {
+            let mut last = last
+                .lock()
+                .unwrap_or_else(std::sync::PoisonError::into_inner);
+            if last.elapsed() >= Duration::from_secs(10) || done == total {
+                *last = Instant::now();
+                let secs = self.started.elapsed().as_secs_f64();
+                let rate = (done - first) as f64 / secs.max(1e-9);
+                let eta = if rate > 0.0 {
+                    format!(", ETA {:.0} s", (total - done) as f64 / rate)
+                } else {
+                    String::new()
+                };
+                eprintln!(
+                    "sweep: {done}/{total} runs ({:.0} %), {rate:.1} runs/s{eta}",
+                    100.0 * done as f64 / total.max(1) as f64
+                );
+            }
+        }
+    }
+
+    fn finish(&self) {
+        if let Some(bar) = &self.bar {
+            bar.finish_and_clear();
+        }
+    }
+}
+
+fn sweep(a: &SweepRunArgs, budget: MemoryBudget, stdout: &mut dyn Write) -> anyhow::Result<()> {
+    let path = a.scenario.as_deref().unwrap_or(Path::new(""));
+    let started = Instant::now();
+    let scenario = Scenario::load_within(path, budget)?;
+    let mut spec = spec(&a.what, &scenario)?;
+    spec.shard = a.shard.as_deref().map(Shard::parse).transpose()?;
+    spec.chunk_runs = a.chunk_runs;
+    spec.validate(&scenario, budget)?;
+    let out = a.out.clone().unwrap_or_else(|| {
+        let name = match spec.shard {
+            Some(s) => format!("{}-shard-{}-of-{}", scenario.name, s.index, s.count),
+            None => scenario.name.clone(),
+        };
+        Path::new("sweep-out").join(name)
+    });
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(a.threads.map_or(0, |t| t as usize))
+        .build()
+        .context("cannot start the worker threads")?;
+    let progress = Progress::new(a.quiet);
+    let result = pool.install(|| {
+        sweep::run(&scenario, &spec, &out, a.resume, &|done, total| {
+            progress.update(done, total);
+        })
+    });
+    progress.finish();
+    let result = result?;
+    if !a.quiet {
+        let secs = started.elapsed().as_secs_f64();
+        write!(
+            stdout,
+            "{}",
+            report(&result, &scenario, secs, pool.current_num_threads())
+        )?;
+    }
+    Ok(())
+}
+
+fn merge(a: &MergeArgs, stdout: &mut dyn Write) -> anyhow::Result<()> {
+    let result = sweep::merge(&a.dirs, &a.out)?;
+    if !a.quiet {
+        writeln!(
+            stdout,
+            "merged {} shard directories into {}/ ({} runs × {} strategies)",
+            a.dirs.len(),
+            a.out.display(),
+            result.manifest.runs,
+            result.manifest.strategies.len()
+        )?;
+    }
+    Ok(())
+}
+
+/// Quotes `s` for bash (single quotes).
+fn sh(s: &str) -> String {
+    format!("'{}'", s.replace('\'', r"'\''"))
+}
+
+fn absolute(path: &Path, what: &str) -> anyhow::Result<PathBuf> {
+    std::path::absolute(path)
+        .with_context(|| format!("{}: cannot make {what} absolute", path.display()))
+}
+
+fn slurm(a: &SlurmArgs, budget: MemoryBudget, stdout: &mut dyn Write) -> anyhow::Result<()> {
+    let scenario = Scenario::load_within(&a.scenario, budget)?;
+    let spec = spec(&a.what, &scenario)?;
+    spec.validate(&scenario, budget)?;
+    if a.shards > spec.runs {
+        anyhow::bail!(
+            "--shards: expected at most --runs ({}) shards, got {}",
+            spec.runs,
+            a.shards
+        );
+    }
+    for (opt, v) in [("--partition", &a.partition), ("--time", &a.time)] {
+        if let Some(v) = v
+            && (v.is_empty()
+                || !v
+                    .chars()
+                    .all(|c| c.is_ascii_alphanumeric() || "-_:.".contains(c)))
+        {
+            anyhow::bail!("{opt}: expected letters, digits, '-', '_', ':' or '.', got {v:?}");
+        }
+    }
+    let exe = match &a.solsim {
+        Some(p) => absolute(p, "--solsim")?,
+        None => std::env::current_exe().context("cannot find this solsim binary")?,
+    };
+    let scenario_path = std::fs::canonicalize(&a.scenario)
+        .with_context(|| format!("{}: cannot resolve", a.scenario.display()))?;
+    let out = absolute(
+        &a.out
+            .clone()
+            .unwrap_or_else(|| Path::new("sweep-out").join(format!("{}-slurm", scenario.name))),
+        "--out",
+    )?;
+    let m = a.shards;
+    let strategies = spec
+        .strategies
+        .iter()
+        .map(|s| s.name())
+        .collect::<Vec<_>>()
+        .join(",");
+    let baseline = spec.baseline.map_or("none", Strategy::name);
+    let (solsim, scen, outq) = (
+        sh(&exe.to_string_lossy()),
+        sh(&scenario_path.to_string_lossy()),
+        sh(&out.to_string_lossy()),
+    );
+    let mut extra = String::new();
+    if let Some(p) = &a.partition {
+        let _ = write!(extra, " --partition={p}");
+    }
+    if let Some(t) = &a.time {
+        let _ = write!(extra, " --time={t}");
+    }
+    let mut s = String::new();
+    let _ = writeln!(s, "#!/usr/bin/env bash");
+    let _ = writeln!(
+        s,
+        "# solsim sweep of {} on Slurm: runs 0..{} of {strategies} (seed {}), in {m} shards —\n\
+         # one array task per shard (`solsim sweep --shard K/{m}`), then a merge job that runs\n\
+         # once every task has succeeded. Submit from a login node: bash THIS_FILE.\n\
+         # Shards write {out}/shard-K-of-{m}, the merge {out}/merged, Slurm logs {out}/slurm.\n\
+         # A task that is requeued or re-run resumes its shard (--resume).",
+        scenario.name,
+        spec.runs,
+        spec.seed,
+        out = out.display()
+    );
+    let _ = writeln!(s, "set -euo pipefail");
+    let _ = writeln!(s, "out={outq}");
+    let _ = writeln!(s, "mkdir -p \"$out/slurm\"");
+    let _ = writeln!(s, "cat > \"$out/slurm/shard.sh\" <<'SOLSIM_JOB'");
+    let _ = writeln!(s, "#!/usr/bin/env bash\nset -euo pipefail");
+    let _ = writeln!(
+        s,
+        "exec {solsim} sweep {scen} --runs {} --strategies {strategies} --seed {} --baseline {baseline} \\\n  \
+         --threads {} --shard \"$SLURM_ARRAY_TASK_ID/{m}\" --out {outq}/\"shard-$SLURM_ARRAY_TASK_ID-of-{m}\" --resume --quiet",
+        spec.runs, spec.seed, a.threads_per_task
+    );
+    let _ = writeln!(s, "SOLSIM_JOB");
+    let _ = writeln!(s, "cat > \"$out/slurm/merge.sh\" <<'SOLSIM_JOB'");
+    let _ = writeln!(s, "#!/usr/bin/env bash\nset -euo pipefail");
+    let _ = writeln!(
+        s,
+        "exec {solsim} sweep merge {outq}/shard-*-of-{m} --out {outq}/merged --quiet"
+    );
+    let _ = writeln!(s, "SOLSIM_JOB");
+    let _ = writeln!(
+        s,
+        "array=$(sbatch --parsable --job-name=solsim-sweep --array=0-{} --cpus-per-task={}{extra} \\\n  \
+         --output=\"$out/slurm/shard-%a.log\" \"$out/slurm/shard.sh\")",
+        m - 1,
+        a.threads_per_task
+    );
+    let _ = writeln!(s, "array=${{array%%;*}}");
+    let _ = writeln!(
+        s,
+        "merge=$(sbatch --parsable --job-name=solsim-merge --dependency=afterok:\"$array\"{extra} \\\n  \
+         --output=\"$out/slurm/merge.log\" \"$out/slurm/merge.sh\")"
+    );
+    let _ = writeln!(s, "echo \"array job $array\"");
+    let _ = writeln!(s, "echo \"merge job ${{merge%%;*}}\"");
+    write!(stdout, "{s}")?;
+    Ok(())
+}
+
+fn pct(x: f64) -> String {
+    format!("{:.1}", 100.0 * x)
+}
+
+fn signed(x: f64, decimals: usize) -> String {
+    let t = format!("{x:+.decimals$}");
+    t.replace('-', "−")
+}
+
+/// The printed report of a sweep.
+#[must_use]
+pub fn report(r: &SweepResult, scenario: &Scenario, seconds: f64, threads: usize) -> String {
+    let m = &r.manifest;
+    let st: &Statistics = &r.summary.statistics;
+    let mut s = String::new();
+    let range = m.shard.map_or(0..m.runs, |sh| sh.first_run..sh.end_run);
+    let _ = writeln!(
+        s,
+        "{} — {} runs × {} strategies (runs {}..{} of {}, seed {}){}",
+        scenario.name,
+        range.end - range.start,
+        m.strategies.len(),
+        range.start,
+        range.end,
+        m.runs,
+        m.seed,
+        m.shard.map_or(String::new(), |sh| format!(
+            ", shard {}/{}",
+            sh.index, sh.count
+        ))
+    );
+    let how = if r.already_complete {
+        "already complete".to_string()
+    } else if r.runs_resumed > 0 {
+        format!(
+            "{} run indices resumed from committed chunks, {} run",
+            r.runs_resumed, r.runs_run
+        )
+    } else {
+        format!("{} run indices", r.runs_run)
+    };
+    let _ = writeln!(
+        s,
+        "{how} in {seconds:.1} s on {threads} threads; files in {}/ (runs.parquet, sols.parquet, summary.json, manifest.json)\n",
+        r.dir.display()
+    );
+    let _ = writeln!(
+        s,
+        "Rates: % of runs, [95 % Wilson interval]. Figures: mean (p5–p95) over the runs that have them."
+    );
+    let mut figs = vec![Figure::SolsToGoal];
+    if m.segment.is_some() {
+        figs.push(Figure::SegmentSols);
+    }
+    figs.extend([Figure::DistanceM, Figure::MaxUncertaintyM]);
+    let rates = [
+        RateKind::NoPath,
+        RateKind::Fault,
+        RateKind::TruthOutsideDisc,
+        RateKind::GoalReached,
+    ];
+    let head_rate = |k: RateKind| match k {
+        RateKind::NoPath => "NO_PATH",
+        RateKind::Fault => "any fault",
+        RateKind::TruthOutsideDisc => "truth outside r",
+        RateKind::GoalReached => "goal reached",
+    };
+    let _ = write!(s, "{:<18}", "strategy");
+    for k in rates {
+        let _ = write!(s, " {:>21}", head_rate(k));
+    }
+    for f in &figs {
+        let _ = write!(s, " {:>24}", f.name());
+    }
+    let _ = writeln!(s);
+    for ss in &st.strategies {
+        let _ = write!(s, "{:<18}", ss.strategy);
+        for k in rates {
+            let cell = ss.rate(k.name()).map_or("-".into(), |r| {
+                format!(
+                    "{} [{}, {}]",
+                    pct(r.rate),
+                    pct(r.interval.lo),
+                    pct(r.interval.hi)
+                )
+            });
+            let _ = write!(s, " {cell:>21}");
+        }
+        for f in &figs {
+            let cell = ss.figure(f.name()).map_or("-".into(), |sp| {
+                let d = if sp.mean.abs() >= 100.0 { 0 } else { 2 };
+                format!("{:.d$} ({:.d$}–{:.d$}) n={}", sp.mean, sp.p5, sp.p95, sp.n)
+            });
+            let _ = write!(s, " {cell:>24}");
+        }
+        let _ = writeln!(s);
+    }
+    if let Some(b) = &st.baseline {
+        let mut paired = vec![Figure::SolsToGoal];
+        if m.segment.is_some() {
+            paired.extend([Figure::SegmentSols, Figure::SegmentDistanceM]);
+        }
+        paired.extend([Figure::NoPathFaults, Figure::DistanceM]);
+        let _ = writeln!(
+            s,
+            "\nPaired difference from {b}: mean of (strategy − {b}) over the run indices where both have the\n\
+             figure [95 % bootstrap interval, {} resamples].",
+            st.bootstrap_resamples
+        );
+        for ss in st.strategies.iter().filter(|x| &x.strategy != b) {
+            for (i, f) in paired.iter().enumerate() {
+                let name = if i == 0 { ss.strategy.as_str() } else { "" };
+                let cell = st
+                    .paired(&ss.strategy, f.name())
+                    .and_then(|p| p.difference)
+                    .map_or("- (no run where both have it)".into(), |d| {
+                        let dec = if f.name().ends_with("_m") { 1 } else { 2 };
+                        format!(
+                            "{:>8} [{}, {}]  {} pairs",
+                            signed(d.mean, dec),
+                            signed(d.interval.lo, dec),
+                            signed(d.interval.hi, dec),
+                            d.n
+                        )
+                    });
+                let _ = writeln!(s, "{name:<18} {:<20} {cell}", f.name());
+            }
+        }
+    }
+    s
+}
