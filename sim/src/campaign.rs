@@ -10,7 +10,6 @@ use std::sync::Arc;
 
 use crate::seeds::{Purpose, stream_seed};
 
-use crate::astar::AStar;
 use crate::autonav::{DriveContext, DriveLimits, RoverParams, RoverState, VoSource};
 use crate::calendar::{Calendar, Planning};
 use crate::localizer::OnboardLocalizer;
@@ -108,7 +107,7 @@ pub fn leg_clearances(c: &Campaign) -> Vec<LegClearance> {
 pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> CampaignOutcome {
     let cal = &c.calendar;
     let mut rng = stream_seed(c.seed, Purpose::Strategy(strategy), 0).rng();
-    let mut astar = AStar::new(c.grid.width, c.grid.height);
+    let mut astar = c.grid.astar();
     let ctx = DriveContext {
         grid: &c.grid,
         route: &c.route,

@@ -15,6 +15,7 @@
 
 use maps::{GeoTransform, MapLayers, Raster, TerrainClass, ZoneSet};
 
+use crate::astar::{AStarPool, PooledAStar};
 use crate::edt;
 
 /// How the planning grid is built (plain settings struct).
@@ -57,6 +58,8 @@ pub struct PlanningGrid {
     pub hazard: Vec<bool>,
     /// Terrain class code per cell (see [`TerrainClass::code`]; 0 = no data, treated as soil).
     pub terrain: Vec<u8>,
+    /// A* scratch of this grid's size, reused by every run on the grid ([`PlanningGrid::astar`]).
+    astar_pool: AStarPool,
 }
 
 impl PlanningGrid {
@@ -165,7 +168,16 @@ impl PlanningGrid {
             clearance_m,
             hazard,
             terrain,
+            astar_pool: AStarPool::default(),
         }
+    }
+
+    /// An A* planner for this grid, reused from an earlier run when one is free (it goes back
+    /// when dropped): the grid is shared by every run of a scenario, and a new planner costs
+    /// 16 bytes per cell to allocate and zero.
+    #[must_use]
+    pub fn astar(&self) -> PooledAStar<'_> {
+        self.astar_pool.take(self.width, self.height)
     }
 
     /// Index of the cell containing map point `p` (metres), or `None` off the grid.
