@@ -51,9 +51,10 @@ struct SweepWhat {
     /// The sweep's seed [default: the scenario's seed]
     #[arg(long, value_name = "SEED")]
     seed: Option<u64>,
-    /// Strategy the paired differences are taken against; `none` for none.
-    #[arg(long, value_name = "STRATEGY", default_value = "ground")]
-    baseline: String,
+    /// Strategy the paired differences are taken against; `none` for none
+    /// [default: ground when it is swept, else none]
+    #[arg(long, value_name = "STRATEGY")]
+    baseline: Option<String>,
 }
 
 #[derive(Args)]
@@ -159,17 +160,13 @@ fn spec(what: &SweepWhat, scenario: &Scenario) -> anyhow::Result<SweepSpec> {
     if let Some(seed) = what.seed {
         spec.seed = seed;
     }
-    spec.baseline = match what.baseline.as_str() {
-        "none" => None,
-        name => {
-            let b = strategy("--baseline", name)?;
-            // The default baseline is dropped quietly when it is not swept.
-            if what.baseline == "ground" && !spec.strategies.contains(&b) {
-                None
-            } else {
-                Some(b)
-            }
-        }
+    spec.baseline = match what.baseline.as_deref() {
+        None => spec
+            .strategies
+            .contains(&Strategy::Ground)
+            .then_some(Strategy::Ground),
+        Some("none") => None,
+        Some(name) => Some(strategy("--baseline", name)?),
     };
     Ok(spec)
 }
@@ -284,11 +281,11 @@ fn merge(a: &MergeArgs, stdout: &mut dyn Write) -> anyhow::Result<()> {
     if !a.quiet {
         writeln!(
             stdout,
-            "merged {} shard directories into {}/ ({} runs × {} strategies)",
-            a.dirs.len(),
+            "merged {} into {}/ ({} × {})",
+            plural(a.dirs.len() as u64, "shard directory").replace("directorys", "directories"),
             a.out.display(),
-            result.manifest.runs,
-            result.manifest.strategies.len()
+            plural(result.manifest.runs, "run"),
+            plural(result.manifest.strategies.len() as u64, "strategy")
         )?;
     }
     Ok(())
@@ -409,6 +406,14 @@ fn slurm(a: &SlurmArgs, budget: MemoryBudget, stdout: &mut dyn Write) -> anyhow:
     Ok(())
 }
 
+fn plural(n: u64, what: &str) -> String {
+    match (n, what) {
+        (1, _) => format!("1 {what}"),
+        (_, "strategy") => format!("{n} strategies"),
+        _ => format!("{n} {what}s"),
+    }
+}
+
 fn pct(x: f64) -> String {
     format!("{:.1}", 100.0 * x)
 }
@@ -427,10 +432,10 @@ pub fn report(r: &SweepResult, scenario: &Scenario, seconds: f64, threads: usize
     let range = m.shard.map_or(0..m.runs, |sh| sh.first_run..sh.end_run);
     let _ = writeln!(
         s,
-        "{} — {} runs × {} strategies (runs {}..{} of {}, seed {}){}",
+        "{} — {} × {} (runs {}..{} of {}, seed {}){}",
         scenario.name,
-        range.end - range.start,
-        m.strategies.len(),
+        plural(range.end - range.start, "run"),
+        plural(m.strategies.len() as u64, "strategy"),
         range.start,
         range.end,
         m.runs,

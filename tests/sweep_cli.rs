@@ -223,7 +223,7 @@ fn a_complete_sweep_is_refused_without_resume_and_kept_with_it() {
     assert_eq!(contents(&out), done);
 
     let o = sweep(&["--runs", "2", "--seed", "5", "--out", s(&out), "--resume"]);
-    assert_bad_input(&o, &["manifest.json", "seed: expected 5"]);
+    assert_bad_input(&o, &["manifest.json", "(seed 379), got seed 5"]);
     assert_eq!(contents(&out), done);
 }
 
@@ -258,8 +258,8 @@ fn a_sweep_over_the_memory_budget_is_refused_before_running() {
             "300",
             [
                 "--runs",
-                "memory budget of 300 MiB",
-                "runs × 1 strategies need",
+                "memory budget (--memory-budget-mib, 300 MiB)",
+                "runs × 1 strategy need",
             ],
         ),
     ] {
@@ -413,7 +413,6 @@ fn bad_slurm_shard_counts_are_refused() {
 /// Clap's own usage errors follow the `error:` line with a usage block and a `--help` hint,
 /// breaking the one-line rule every other bad input keeps.
 #[test]
-#[ignore = "solsim prints clap's multi-line usage errors (reported); un-ignore once one line"]
 fn clap_errors_are_one_line() {
     let tmp = tempfile::tempdir().expect("tempdir");
     let out = tmp.path().join("out");
@@ -437,7 +436,6 @@ fn clap_errors_are_one_line() {
 /// quietly as the default is (the sweep runs with no baseline), while any other unswept
 /// baseline is refused.
 #[test]
-#[ignore = "an explicit --baseline ground is dropped silently when not swept (reported)"]
 fn an_explicit_baseline_that_is_not_swept_is_refused() {
     let tmp = tempfile::tempdir().expect("tempdir");
     let out = tmp.path().join("out");

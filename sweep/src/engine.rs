@@ -136,16 +136,40 @@ impl SweepSpec {
                 self.runs,
             ));
         }
-        let need = self.runs * self.strategies.len() as u64 * RUN_ROW_BYTES;
-        if !budget.allows(need) {
+        if let Some(s) = self.shard
+            && s.count > self.runs
+        {
+            return Err(SweepError::option(
+                "--shard",
+                format!("at most --runs ({}) shards", self.runs),
+                format!("{}/{}", s.index, s.count),
+            ));
+        }
+        // The run table of this slice, held for the statistics, beside the scenario's maps and
+        // planning grid (already checked against the budget when it was loaded).
+        let r = self.run_range();
+        let table = (r.end - r.start) * self.strategies.len() as u64 * RUN_ROW_BYTES;
+        let grid = &scenario.campaign.grid;
+        let maps = maps::memory_budget::bytes_of(&[
+            grid.width as u64,
+            grid.height as u64,
+            sim::planning_grid::PlanningGrid::BYTES_PER_CELL,
+        ]);
+        if !budget.allows(table.saturating_add(maps)) {
             return Err(SweepError::option(
                 "--runs",
                 format!(
-                    "a sweep whose run table fits the memory budget of {} ({} runs × {} strategies need {})",
+                    "a sweep whose run table fits the memory budget (--memory-budget-mib, {}) beside the planning grid ({}): {} runs × {} {} need {}",
                     maps::input_file::human_bytes(budget.limit_bytes),
-                    self.runs,
+                    maps::input_file::human_bytes(maps),
+                    r.end - r.start,
                     self.strategies.len(),
-                    maps::input_file::human_bytes(need)
+                    if self.strategies.len() == 1 {
+                        "strategy"
+                    } else {
+                        "strategies"
+                    },
+                    maps::input_file::human_bytes(table)
                 ),
                 self.runs,
             ));
@@ -379,20 +403,22 @@ fn prepare(dir: &Path, fresh: Manifest, resume: bool) -> Result<Manifest, SweepE
             format!("{} (holds a sweep: {})", dir.display(), path.display()),
         ));
     }
-    if let Some((field, this, there)) = fresh.differs_from(&found) {
-        return Err(SweepError::format(
-            &path,
-            field,
-            format!("{this} (this sweep's; resume with the same scenario and options)"),
-            there,
-        ));
-    }
-    if found.shard != fresh.shard {
-        return Err(SweepError::format(
-            &path,
-            "shard",
-            format!("{:?} (this sweep's)", fresh.shard),
-            format!("{:?}", found.shard),
+    let mismatch = fresh.differs_from(&found).or_else(|| {
+        (found.shard != fresh.shard).then(|| {
+            let f = |s: Option<ShardInfo>| {
+                s.map_or("none".into(), |s| format!("{}/{}", s.index, s.count))
+            };
+            ("shard", f(fresh.shard), f(found.shard))
+        })
+    });
+    if let Some((field, this, there)) = mismatch {
+        return Err(SweepError::option(
+            "--resume",
+            format!(
+                "the scenario and options of the sweep in {} ({field} {there})",
+                path.display()
+            ),
+            format!("{field} {this}"),
         ));
     }
     if found.state == State::Complete {
@@ -468,7 +494,6 @@ pub fn run(
     let total = range.end - range.start;
     if manifest.state == State::Complete {
         let summary = summarise(&read_run_rows(&dir.join("runs.parquet"))?, &manifest);
-        progress(total, total);
         return Ok(SweepResult {
             dir: dir.to_path_buf(),
             manifest,

@@ -107,7 +107,8 @@ pub struct SolRow {
     pub fault_after_m: Option<f64>,
     /// Uncertainty radius at the fault, metres.
     pub fault_uncertainty_m: Option<f64>,
-    /// Clearance of the narrowest passage on the sol's leg, metres.
+    /// Clearance of the narrowest passage on the sol's leg, metres (`None` also when a leg has
+    /// no path at any radius).
     pub passage_clearance_m: Option<f64>,
     /// Whether the ground localized the rover with this sol's uplink.
     pub ground_localized: bool,
@@ -205,7 +206,9 @@ pub fn rows_of(
                 fault: s.fault.as_ref().map(|f| f.kind),
                 fault_after_m: s.fault.as_ref().map(|f| f.after_m),
                 fault_uncertainty_m: s.fault.as_ref().map(|f| f.uncertainty_m),
-                passage_clearance_m: s.passage_clearance_m,
+                // −∞ (no path at any radius) is stored as null: Parquet readers need not
+                // expect infinities.
+                passage_clearance_m: s.passage_clearance_m.filter(|v| v.is_finite()),
                 ground_localized: s.ground_localization.is_some(),
                 onboard_localization: onboard.is_some(),
                 onboard_applied: onboard.map(|e| e.applied),
