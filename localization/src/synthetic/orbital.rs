@@ -3,9 +3,9 @@
 use maps::Raster;
 use rayon::prelude::*;
 
-use super::noise::{SplitMix, ValueFbm, gaussian, sub_seed, value};
+use super::noise::{CachedValue, SplitMix, ValueFbm, gaussian, sub_seed};
 use super::shading::{HeightField, Sun, bilinear, gaussian_blur, radiance};
-use super::truth::ripple_height_m;
+use super::truth::RippleField;
 use super::{ORBITAL_DEM_RESOLUTION_M_PER_PX, SyntheticError, TruthPatch, check_param};
 
 const SALT_IMAGE_NOISE: u64 = 11;
@@ -291,17 +291,17 @@ pub fn render_orbital(
         let lambda = p.ortho_displacement_wavelength_m;
         let src = linear;
         let mut warped = vec![0.0f32; w * h];
-        warped
-            .par_chunks_mut(w.max(1))
-            .enumerate()
-            .for_each(|(row, out)| {
+        warped.par_chunks_mut(w.max(1)).enumerate().for_each_init(
+            || (CachedValue::new(sx), CachedValue::new(sy)),
+            |(noise_x, noise_y), (row, out)| {
                 for (col, v) in out.iter_mut().enumerate() {
                     let (x, y) = geo.center_of(col, row);
-                    let dx = k * value(sx, x / lambda, y / lambda);
-                    let dy = k * value(sy, x / lambda, y / lambda);
+                    let dx = k * noise_x.at(x / lambda, y / lambda);
+                    let dy = k * noise_y.at(x / lambda, y / lambda);
                     *v = bilinear(&src, w, h, col as f64 + dx / res, row as f64 - dy / res);
                 }
-            });
+            },
+        );
         linear = warped;
     }
     let blurred = gaussian_blur(&linear, w, h, p.blur_sigma_px);
@@ -364,19 +364,23 @@ fn epoch_heights(patch: &TruthPatch, migration_m: f64) -> Option<Raster<f32>> {
     let geo = patch.height_m.geo;
     let w = patch.height_m.width;
     let mut out = patch.height_m.clone();
-    out.data
-        .par_chunks_mut(w.max(1))
-        .enumerate()
-        .for_each(|(row, hs)| {
+    // One field per epoch, so that each keeps its own noise cells cached.
+    out.data.par_chunks_mut(w.max(1)).enumerate().for_each_init(
+        || (RippleField::new(), RippleField::new()),
+        |(then, now), (row, hs)| {
             for (col, hv) in hs.iter_mut().enumerate() {
                 let sand = f64::from(patch.sand.data[row * w + col]);
                 if sand > 0.0 {
                     let (x, y) = geo.center_of(col, row);
-                    let moved = ripple_height_m(x, y, -migration_m) - ripple_height_m(x, y, 0.0);
+                    // The weights do not move with the ripples.
+                    let weights = now.weights(x, y);
+                    let moved = then.height_m(x, y, -migration_m, &weights)
+                        - now.height_m(x, y, 0.0, &weights);
                     *hv += (sand * moved) as f32;
                 }
             }
-        });
+        },
+    );
     Some(out)
 }
 

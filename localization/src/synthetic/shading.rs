@@ -53,6 +53,9 @@ struct SkipLevel {
 }
 
 impl SkipLevel {
+    /// The level of `1 << shift` pixel tiles over the `w × h` grid `data` (the reference the
+    /// levels built by [`HeightField::new`] are tested against).
+    #[cfg(test)]
     fn new(data: &[f32], w: usize, h: usize, shift: u32) -> Self {
         let tile_px = 1usize << shift;
         let (tiles_x, tiles_y) = (w.div_ceil(tile_px), h.div_ceil(tile_px));
@@ -66,6 +69,54 @@ impl SkipLevel {
                 }
             }
         }
+        Self::from_own(&own, tiles_x, tiles_y, shift)
+    }
+
+    /// Per tile of `1 << shift` pixels, the highest sample of the tile and of one pixel east and
+    /// south of it (bilinear reads them): `(maxima, tiles_x, tiles_y)`. One pass over each
+    /// band of rows, a column maximum at a time.
+    fn own_maxima(data: &[f32], w: usize, h: usize, shift: u32) -> (Vec<f32>, usize, usize) {
+        let tile_px = 1usize << shift;
+        let (tiles_x, tiles_y) = (w.div_ceil(tile_px), h.div_ceil(tile_px));
+        let mut own = vec![f32::NEG_INFINITY; tiles_x * tiles_y];
+        let mut column = vec![f32::NEG_INFINITY; w];
+        for ty in 0..tiles_y {
+            column.fill(f32::NEG_INFINITY);
+            for row in ty * tile_px..=((ty + 1) * tile_px).min(h - 1) {
+                for (m, &v) in column.iter_mut().zip(&data[row * w..(row + 1) * w]) {
+                    *m = m.max(v);
+                }
+            }
+            for (tx, m) in own[ty * tiles_x..(ty + 1) * tiles_x].iter_mut().enumerate() {
+                for &v in &column[tx * tile_px..=((tx + 1) * tile_px).min(w - 1)] {
+                    *m = m.max(v);
+                }
+            }
+        }
+        (own, tiles_x, tiles_y)
+    }
+
+    /// The own maxima of tiles `1 << step` times larger than those of `own` (`tiles_x ×
+    /// tiles_y`): the maximum of each block of `(1 << step)²` of them, which covers exactly the
+    /// larger tile and its extra pixel east and south (maxima are exact in any grouping).
+    fn coarser(own: &[f32], tiles_x: usize, tiles_y: usize, step: u32) -> (Vec<f32>, usize, usize) {
+        let k = 1usize << step;
+        let (cx, cy) = (tiles_x.div_ceil(k), tiles_y.div_ceil(k));
+        let mut out = vec![f32::NEG_INFINITY; cx * cy];
+        for (t, m) in out.iter_mut().enumerate() {
+            let (tx, ty) = (t % cx, t / cx);
+            for fy in ty * k..((ty + 1) * k).min(tiles_y) {
+                for &v in &own[fy * tiles_x + tx * k..fy * tiles_x + ((tx + 1) * k).min(tiles_x)] {
+                    *m = m.max(v);
+                }
+            }
+        }
+        (out, cx, cy)
+    }
+
+    /// The level whose tiles' own maxima are `own` (`tiles_x × tiles_y` tiles of `1 << shift`
+    /// pixels).
+    fn from_own(own: &[f32], tiles_x: usize, tiles_y: usize, shift: u32) -> Self {
         // Points up to tile_px − 1 away read at most one tile further in each direction.
         let max_near = (0..tiles_x * tiles_y)
             .map(|t| {
@@ -80,7 +131,7 @@ impl SkipLevel {
             })
             .collect();
         Self {
-            tile_px,
+            tile_px: 1usize << shift,
             shift,
             tiles_x,
             max_near,
@@ -103,24 +154,29 @@ impl<'a> HeightField<'a> {
     /// A view of `raster` (heights in metres).
     pub(super) fn new(raster: &'a Raster<f32>) -> Self {
         let (w, h) = (raster.width, raster.height);
-        let levels = if w == 0 || h == 0 {
-            Vec::new()
-        } else {
-            SKIP_TILE_SHIFTS
-                .iter()
-                .map(|&shift| SkipLevel::new(&raster.data, w, h, shift))
-                .collect()
-        };
+        let mut levels = Vec::with_capacity(SKIP_TILE_SHIFTS.len());
+        let mut max_m = f32::NEG_INFINITY;
+        if w > 0 && h > 0 {
+            // Finest level from the samples, each coarser one from the level below it.
+            let mut shifts = SKIP_TILE_SHIFTS.iter().rev();
+            let mut shift = shifts.next().copied().unwrap_or(0);
+            let (mut own, mut tx, mut ty) = SkipLevel::own_maxima(&raster.data, w, h, shift);
+            levels.push(SkipLevel::from_own(&own, tx, ty, shift));
+            for &coarser in shifts {
+                (own, tx, ty) = SkipLevel::coarser(&own, tx, ty, coarser - shift);
+                shift = coarser;
+                levels.push(SkipLevel::from_own(&own, tx, ty, shift));
+            }
+            levels.reverse();
+            // The tiles cover every sample.
+            max_m = own.iter().copied().fold(f32::NEG_INFINITY, f32::max);
+        }
         Self {
             data: &raster.data,
             width: w,
             height: h,
             resolution_m: raster.geo.resolution_m_per_px,
-            max_m: raster
-                .data
-                .iter()
-                .copied()
-                .fold(f32::NEG_INFINITY, f32::max),
+            max_m,
             levels,
         }
     }
@@ -467,6 +523,29 @@ mod tests {
             hits > total / 20 && hits < total * 19 / 20,
             "{hits}/{total}"
         );
+    }
+
+    #[test]
+    fn skip_levels_equal_the_direct_maxima() {
+        use crate::synthetic::noise::gaussian;
+        for (w, h) in [(1, 1), (3, 2), (64, 64), (65, 64), (130, 97), (257, 300)] {
+            let mut ras = Raster::filled(w, h, GeoTransform::new(0.0, 30.0, 0.25), 0.0f32);
+            for row in 0..h {
+                for col in 0..w {
+                    ras.set(col, row, gaussian(5, col as i64, row as i64) as f32);
+                }
+            }
+            let hf = HeightField::new(&ras);
+            let max = ras.data.iter().copied().fold(f32::NEG_INFINITY, f32::max);
+            assert_eq!(hf.max_m.to_bits(), max.to_bits());
+            assert_eq!(hf.levels.len(), SKIP_TILE_SHIFTS.len());
+            for (level, &shift) in hf.levels.iter().zip(&SKIP_TILE_SHIFTS) {
+                let want = SkipLevel::new(&ras.data, w, h, shift);
+                assert_eq!((level.tile_px, level.shift), (want.tile_px, want.shift));
+                assert_eq!(level.tiles_x, want.tiles_x);
+                assert_eq!(level.max_near, want.max_near, "{w}×{h}, shift {shift}");
+            }
+        }
     }
 
     #[test]
