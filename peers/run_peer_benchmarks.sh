@@ -6,7 +6,9 @@
 # Sections: grid (B3 keep-out growth, B4 A*), campaign (the whole rapid-traverse compare),
 #           census (B1 exact census scores, B2 full localization),
 #           planner (B6 activity planner against OR-Tools CP-SAT),
-#           study (many seeds through the library, map loaded once, against the CLI per run).
+#           study (many seeds through the library, map loaded once, against the CLI per run),
+#           sweep (Monte Carlo sweeps: cargo bench --bench sweep against pyarrow and scipy, and the
+#           issue 11 targets timed end to end with peak memory).
 #
 # The Rust benches build with -C target-cpu=native into their own target dir
 # (target/bench-native), so the shared target/ is not rebuilt with other flags.
@@ -102,8 +104,51 @@ section_study() {
     uptime
 }
 
+# --- sweep: Monte Carlo sweeps (issue 11) -----------------------------------------------------
+# cargo bench --bench sweep (simulation, Parquet table, paired bootstrap) against pyarrow's
+# write_table and scipy.stats.bootstrap on the same data; then the targets end to end with
+# /usr/bin/time (wall, user, peak RSS): 1000 runs x 5 strategies of the rapid traverse on 1 and
+# 2 threads, 200 runs x 5 of sol383-386 (census localizer) on 2 threads; and a sweep against
+# what a user had before it, one `solsim compare` process per run.
+section_sweep() {
+    local dump="$BENCH_TARGET/bench-sweep"
+    local runs="${SWEEP_RUNS:-1000}"
+    echo "== sweep: uptime (load on this 2-core machine) =="
+    uptime
+    echo "== sweep: cargo bench --bench sweep (dumps the data to $dump) =="
+    SOLSIM_SWEEP_DUMP="$dump" RUSTFLAGS="-C target-cpu=native" CARGO_TARGET_DIR="$BENCH_TARGET" \
+        cargo bench --bench sweep
+    echo "== sweep: pyarrow and scipy on the same data =="
+    python3 peers/bench_sweep.py peers --dump "$dump" --out "$dump/peers.json"
+    echo "== sweep: ratios (ours / peer, < 1 = faster) =="
+    python3 peers/bench_sweep.py report --peers "$dump/peers.json" --criterion "$BENCH_TARGET/criterion"
+    # The end-to-end targets use the ordinary release build, as a user runs it.
+    cargo build --release --quiet --bin solsim -p solsim
+    local bin=target/release/solsim
+    local out
+    out=$(mktemp -d)
+    for threads in 1 2; do
+        echo "== sweep: rapid traverse, $runs runs x 5 strategies, $threads thread(s) (target <= 120 s on 2) =="
+        /usr/bin/time -f "rapid traverse $threads thread(s): %e s wall, %U s user, %M KB peak" \
+            "$bin" sweep scenarios/rapid-traverse-379-409.toml --runs "$runs" --threads "$threads" \
+            --quiet --out "$out/rapid-$threads"
+    done
+    cmp "$out/rapid-1/runs.parquet" "$out/rapid-2/runs.parquet" && echo "1 and 2 threads: identical runs.parquet"
+    echo "== sweep: sol383-386 (census localizer), 200 runs x 5 strategies, 2 threads (target <= 60 s) =="
+    /usr/bin/time -f "sol383-386 census: %e s wall, %U s user, %M KB peak" \
+        "$bin" sweep scenarios/sol383-386.toml --runs 200 --threads 2 --quiet --out "$out/s383"
+    echo "== sweep: 20 runs as one sweep against 20 solsim compare processes (rapid traverse, 2 threads) =="
+    /usr/bin/time -f "sweep --runs 20: %e s wall, %U s user, %M KB peak" \
+        "$bin" sweep scenarios/rapid-traverse-379-409.toml --runs 20 --quiet --out "$out/rapid-20"
+    /usr/bin/time -f "20 x compare: %e s wall, %U s user, %M KB peak" sh -c '
+        for _ in $(seq 20); do "$1" compare "$2" --no-files > /dev/null; done' \
+        sh "$bin" scenarios/rapid-traverse-379-409.toml
+    rm -rf "$out"
+    uptime
+}
+
 sections=("$@")
-[ ${#sections[@]} -eq 0 ] && sections=(grid campaign census planner study)
+[ ${#sections[@]} -eq 0 ] && sections=(grid campaign census planner study sweep)
 for s in "${sections[@]}"; do
     "section_$s"
 done

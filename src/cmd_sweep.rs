@@ -462,7 +462,8 @@ pub fn report(r: &SweepResult, scenario: &Scenario, seconds: f64, threads: usize
     );
     let _ = writeln!(
         s,
-        "Rates: % of runs, [95 % Wilson interval]. Figures: mean (p5–p95) over the runs that have them."
+        "Rates: % of runs [95 % Wilson interval]. Figures: mean (p5–p95) over the runs that have them\n\
+         (n = how many, when not all)."
     );
     let mut figs = vec![Figure::SolsToGoal];
     if m.segment.is_some() {
@@ -483,10 +484,10 @@ pub fn report(r: &SweepResult, scenario: &Scenario, seconds: f64, threads: usize
     };
     let _ = write!(s, "{:<18}", "strategy");
     for k in rates {
-        let _ = write!(s, " {:>21}", head_rate(k));
+        let _ = write!(s, " {:>17}", head_rate(k));
     }
     for f in &figs {
-        let _ = write!(s, " {:>24}", f.name());
+        let _ = write!(s, " {:>19}", f.name());
     }
     let _ = writeln!(s);
     for ss in &st.strategies {
@@ -500,14 +501,19 @@ pub fn report(r: &SweepResult, scenario: &Scenario, seconds: f64, threads: usize
                     pct(r.interval.hi)
                 )
             });
-            let _ = write!(s, " {cell:>21}");
+            let _ = write!(s, " {cell:>17}");
         }
         for f in &figs {
             let cell = ss.figure(f.name()).map_or("-".into(), |sp| {
                 let d = if sp.mean.abs() >= 100.0 { 0 } else { 2 };
-                format!("{:.d$} ({:.d$}–{:.d$}) n={}", sp.mean, sp.p5, sp.p95, sp.n)
+                let n = if sp.n as u64 == ss.runs {
+                    String::new()
+                } else {
+                    format!(" n={}", sp.n)
+                };
+                format!("{:.d$} ({:.d$}–{:.d$}){n}", sp.mean, sp.p5, sp.p95)
             });
-            let _ = write!(s, " {cell:>24}");
+            let _ = write!(s, " {cell:>19}");
         }
         let _ = writeln!(s);
     }

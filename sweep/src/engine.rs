@@ -757,10 +757,15 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepResult, SweepError> {
             .map_err(|e| io(out, "cannot list", e))?
             .next()
             .is_none();
-        if !empty {
+        // An earlier merge of these shards (finished or interrupted) may be written over.
+        let same = || -> Result<bool, SweepError> {
+            Ok(Manifest::read(out)?
+                .is_some_and(|m| m.shard.is_none() && m.differs_from(&parts[0].1).is_none()))
+        };
+        if !empty && !same()? {
             return Err(SweepError::option(
                 "--out",
-                "a new or empty directory",
+                "a new or empty directory, or an earlier merge of these shards",
                 format!("{} (not empty)", out.display()),
             ));
         }
