@@ -17,7 +17,6 @@
 use std::collections::BTreeSet;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use rayon::prelude::*;
@@ -515,24 +514,53 @@ pub fn run(
     progress(resumed, total);
     let chunks_dir = dir.join("chunks");
     std::fs::create_dir_all(&chunks_dir).map_err(|e| io(&chunks_dir, "cannot create", e))?;
-    let state = Mutex::new(manifest);
-    pending.par_iter().try_for_each(|chunk| {
-        let results: Vec<(RunRow, Vec<SolRow>)> = chunk
-            .clone()
-            .into_par_iter()
-            .flat_map_iter(|run| run_rows(scenario, spec, segment, run))
-            .collect();
-        let run_rows: Vec<RunRow> = results.iter().map(|(r, _)| r.clone()).collect();
-        let sol_rows: Vec<SolRow> = results.into_iter().flat_map(|(_, s)| s).collect();
-        commit_chunk(&chunks_dir, chunk, &run_rows, &sol_rows, &state, dir)?;
-        let n =
-            done.fetch_add(chunk.end - chunk.start, Ordering::Relaxed) + chunk.end - chunk.start;
-        progress(n, total);
-        Ok::<(), SweepError>(())
-    })?;
-    let manifest = state
-        .into_inner()
-        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    // Workers simulate; one committer thread writes each finished chunk (two Parquet files and
+    // the manifest, each `fsync`ed), so no worker waits on the disk. The queue is short, which
+    // bounds the rows held in memory.
+    let (tx, rx) = std::sync::mpsc::sync_channel::<(Range<u64>, Vec<RunRow>, Vec<SolRow>)>(2);
+    let mut manifest = manifest;
+    let (simulated, committed) = std::thread::scope(|scope| {
+        let committer = scope.spawn(|| -> Result<Manifest, SweepError> {
+            for (chunk, run_rows, sol_rows) in rx {
+                commit_chunk(
+                    &chunks_dir,
+                    &chunk,
+                    &run_rows,
+                    &sol_rows,
+                    &mut manifest,
+                    dir,
+                )?;
+                let n = done.fetch_add(chunk.end - chunk.start, Ordering::Relaxed) + chunk.end
+                    - chunk.start;
+                progress(n, total);
+            }
+            Ok(manifest)
+        });
+        let simulated = pending.par_iter().try_for_each(|chunk| {
+            let results: Vec<(RunRow, Vec<SolRow>)> = chunk
+                .clone()
+                .into_par_iter()
+                .flat_map_iter(|run| run_rows(scenario, spec, segment, run))
+                .collect();
+            let run_rows: Vec<RunRow> = results.iter().map(|(r, _)| r.clone()).collect();
+            let sol_rows: Vec<SolRow> = results.into_iter().flat_map(|(_, s)| s).collect();
+            // A closed queue means the committer stopped on an error, reported below.
+            tx.send((chunk.clone(), run_rows, sol_rows)).map_err(|_| ())
+        });
+        drop(tx);
+        let committed = committer
+            .join()
+            .unwrap_or_else(|p| std::panic::resume_unwind(p));
+        (simulated, committed)
+    });
+    let manifest = committed?;
+    if simulated.is_err() {
+        return Err(SweepError::Io {
+            path: dir.to_path_buf(),
+            what: "the chunk committer stopped".into(),
+            message: "without an error (a bug)".into(),
+        });
+    }
     let sources: Vec<(PathBuf, PathBuf)> = manifest
         .chunks
         .iter()
@@ -560,7 +588,7 @@ fn commit_chunk(
     chunk: &Range<u64>,
     run_rows: &[RunRow],
     sol_rows: &[SolRow],
-    state: &Mutex<Manifest>,
+    m: &mut Manifest,
     dir: &Path,
 ) -> Result<(), SweepError> {
     let bug = |e: arrow_schema::ArrowError| SweepError::Io {
@@ -582,9 +610,6 @@ fn commit_chunk(
         runs_sha256: sha256_file(&runs_path)?,
         sols_sha256: sha256_file(&sols_path)?,
     };
-    let mut m = state
-        .lock()
-        .unwrap_or_else(std::sync::PoisonError::into_inner);
     m.chunks.push(entry);
     m.chunks.sort_by_key(|c| c.first_run);
     m.write(dir)
