@@ -37,7 +37,7 @@ use crate::hbs::{ActivityLog, HbsFile, HbsParams, LossReason, run_activity};
 use crate::matcher::{MatchParams, MatchResult, Method, OrbitalMap, RoverImages, localize};
 use crate::synthetic::{
     ORTHO_RESOLUTION_M_PER_PX, ORTHO_SIZE_PX, OrbitalParams, RoverImagingParams, SyntheticError,
-    render_orbital, render_rover, truth_patch,
+    TerrainStatics, patch_grid, render_orbital_with, render_rover, truth_patch_on,
 };
 
 /// One localization at flight size (240² orthomosaic, ±30 m at 25 cm, DEM, sub-pixel) on the
@@ -375,6 +375,19 @@ fn result_bytes(outcome: &Result<MatchResult, String>) -> Vec<u8> {
 /// rendered, is a lost localization with the reason.
 #[must_use]
 pub fn run_onboard(layers: &MapLayers, req: &OnboardRequest, s: &OnboardSettings) -> OnboardRun {
+    run_onboard_with(layers, None, req, s)
+}
+
+/// [`run_onboard`] with the seed-independent terrain fields of `layers` taken from `statics`
+/// when it serves them ([`TerrainStatics::serves`]): the same run, faster when many runs share
+/// one map.
+#[must_use]
+pub fn run_onboard_with(
+    layers: &MapLayers,
+    statics: Option<&TerrainStatics>,
+    req: &OnboardRequest,
+    s: &OnboardSettings,
+) -> OnboardRun {
     let radius_m = req
         .uncertainty_m
         .clamp(s.min_search_radius_m, s.max_search_radius_m);
@@ -405,8 +418,11 @@ pub fn run_onboard(layers: &MapLayers, req: &OnboardRequest, s: &OnboardSettings
     let half_size_m = radius_m.max(offset) + half_ortho_m + PATCH_MARGIN_M;
     let mut sol_rng = ChaCha8Rng::seed_from_u64(req.sol_seed);
     let rover_seed = rand::RngExt::random::<u64>(&mut sol_rng);
-    let rendered = truth_patch(layers, req.prior_m, half_size_m, req.truth_seed).and_then(|p| {
-        let orbital = render_orbital(&p, &s.orbital, req.orbital_seed)?;
+    let statics = statics.filter(|t| t.serves(layers, s.orbital.ripple_migration_m));
+    let rendered = patch_grid(layers, req.prior_m, half_size_m).and_then(|(geo, n)| {
+        let fields = statics.and_then(|t| t.patch(geo, n));
+        let p = truth_patch_on(layers, geo, n, req.truth_seed, fields.as_ref());
+        let orbital = render_orbital_with(&p, &s.orbital, req.orbital_seed, fields.as_ref())?;
         let rover = render_rover(&p, req.truth_m, &s.rover, rover_seed)?;
         Ok((orbital, rover))
     });

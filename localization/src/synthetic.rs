@@ -17,6 +17,10 @@
 //!    (late-afternoon) sun than orbit, a different monotonic response per wedge, sensor noise;
 //!    and a 1 m rover DEM where enough samples were seen.
 //!
+//! Many runs on one map share [`TerrainStatics`]: the seed-independent parts of the truth (map
+//! DEM height, interdune depth, the ripples at both epochs), built once per 16 m tile, which
+//! [`crate::onboard::run_onboard_with`] takes instead of recomputing them (the same bits).
+//!
 //! ## Error sources (why census does not localize these scenes to millimetres)
 //!
 //! Rendering the map and the mosaic from one truth with perfect geometry localizes to ~5 mm;
@@ -79,14 +83,18 @@ mod orbital;
 mod rover;
 mod rover_params;
 mod shading;
+mod statics;
 mod truth;
 
+pub(crate) use orbital::render_orbital_with;
 pub use orbital::{OrbitalParams, OrbitalProducts, render_orbital};
 pub use rover::{
     RoverGeometryErrors, RoverLighting, RoverObservation, WedgeResponse, render_rover,
 };
 pub use rover_params::RoverImagingParams;
+pub use statics::TerrainStatics;
 pub use truth::{TruthPatch, truth_patch};
+pub(crate) use truth::{patch_grid, truth_patch_on};
 
 /// Pixel size of the truth patch and of the orbital appearance image, metres (HiRISE, 25 cm).
 pub const TRUTH_RESOLUTION_M_PER_PX: f64 = 0.25;

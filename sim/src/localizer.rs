@@ -24,6 +24,7 @@ use std::sync::Arc;
 use crate::outcome::RejectionReason;
 use localization::matcher::Method;
 use localization::onboard::OnboardSettings;
+use localization::synthetic::TerrainStatics;
 use maps::MapLayers;
 use rand::RngExt;
 use rand_chacha::ChaCha8Rng;
@@ -86,6 +87,11 @@ pub struct ImageryLocalizer {
     pub layers: Arc<MapLayers>,
     /// Matcher, imaging and co-processor settings.
     pub settings: OnboardSettings,
+    /// The seed-independent terrain fields of `layers`, filled by the runs as they render and
+    /// shared by every run of the scenario (and every thread). Used only while they are the
+    /// fields of `layers` at `settings.orbital` ([`TerrainStatics::serves`]); the imagery is
+    /// the same with or without them.
+    pub terrain_statics: Arc<TerrainStatics>,
 }
 
 impl ImageryLocalizer {
@@ -94,7 +100,15 @@ impl ImageryLocalizer {
     pub fn new(layers: Arc<MapLayers>, method: Method) -> Self {
         let mut settings = OnboardSettings::default();
         settings.matcher.method = method;
-        Self { layers, settings }
+        let terrain_statics = Arc::new(TerrainStatics::new(
+            Arc::clone(&layers),
+            settings.orbital.ripple_migration_m,
+        ));
+        Self {
+            layers,
+            settings,
+            terrain_statics,
+        }
     }
 }
 

@@ -100,7 +100,7 @@ fn imagery_localization(
     start: SolSeconds,
     sol_seed: u64,
 ) -> LocalizationEvent {
-    use localization::onboard::{OnboardRequest, run_onboard};
+    use localization::onboard::{OnboardRequest, run_onboard_with};
     let truth = state.truth.position_m;
     let estimate = state.estimate.position_m;
     let request = OnboardRequest {
@@ -112,7 +112,12 @@ fn imagery_localization(
         orbital_seed: stream_seed(c.seed, Purpose::WorldOrbital, 0).seed,
         sol_seed,
     };
-    let run = run_onboard(&loc.layers, &request, &loc.settings);
+    let run = run_onboard_with(
+        &loc.layers,
+        Some(&loc.terrain_statics),
+        &request,
+        &loc.settings,
+    );
     let at = |t_s: f64| start.after_s(t_s).lmst();
     let mut event = LocalizationEvent {
         kind: LocalizationKind::Onboard,

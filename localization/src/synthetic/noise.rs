@@ -44,7 +44,8 @@ fn lattice(seed: u64, ix: i64, iy: i64) -> f64 {
 
 /// Value noise at `(x, y)` in lattice units: zero-mean, unit-variance lattice values blended
 /// with a smoothstep, so the field is continuous with a standard deviation of about 0.75.
-#[inline]
+/// The renderers evaluate it through [`CachedValue`]; this is its reference.
+#[cfg(test)]
 #[must_use]
 pub(super) fn value(seed: u64, x: f64, y: f64) -> f64 {
     let (ix, iy) = (floor_i64(x), floor_i64(y));

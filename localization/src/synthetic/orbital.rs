@@ -5,6 +5,7 @@ use rayon::prelude::*;
 
 use super::noise::{CachedValue, SplitMix, ValueFbm, gaussian, sub_seed};
 use super::shading::{HeightField, Sun, bilinear, gaussian_blur, radiance};
+use super::statics::PatchStatics;
 use super::truth::RippleField;
 use super::{ORBITAL_DEM_RESOLUTION_M_PER_PX, SyntheticError, TruthPatch, check_param};
 
@@ -240,13 +241,28 @@ pub fn render_orbital(
     p: &OrbitalParams,
     seed: u64,
 ) -> Result<OrbitalProducts, SyntheticError> {
+    render_orbital_with(patch, p, seed, None)
+}
+
+/// [`render_orbital`] with the ripples' change between the epochs taken from `statics` when
+/// given (the fields of the map `patch` was made from, on its grid: the same values, computed
+/// once per map; see [`super::statics`]).
+///
+/// # Errors
+/// As [`render_orbital`].
+pub(crate) fn render_orbital_with(
+    patch: &TruthPatch,
+    p: &OrbitalParams,
+    seed: u64,
+    statics: Option<&PatchStatics<'_>>,
+) -> Result<OrbitalProducts, SyntheticError> {
     p.validate()?;
     patch.check()?;
     let geo = patch.height_m.geo;
     let res = geo.resolution_m_per_px;
     // The surface at the orbital epoch: the ripples sat `ripple_migration_m` upwind of where
     // the rover sees them.
-    let epoch_height = epoch_heights(patch, p.ripple_migration_m);
+    let epoch_height = epoch_heights(patch, p.ripple_migration_m, statics);
     let hf = HeightField::new(epoch_height.as_ref().unwrap_or(&patch.height_m));
     let (w, h) = (hf.width, hf.height);
     let sun = Sun::new(p.sun_azimuth_deg, p.sun_elevation_deg, hf.resolution_m);
@@ -356,26 +372,39 @@ pub fn render_orbital(
 }
 
 /// The truth heights with the ripples moved back by `migration_m` (the orbital epoch), or
-/// `None` if nothing moves (no sand, or no migration).
-fn epoch_heights(patch: &TruthPatch, migration_m: f64) -> Option<Raster<f32>> {
+/// `None` if nothing moves (no sand, or no migration). `statics`, when given, holds the ripples'
+/// change at this migration.
+fn epoch_heights(
+    patch: &TruthPatch,
+    migration_m: f64,
+    statics: Option<&PatchStatics<'_>>,
+) -> Option<Raster<f32>> {
     if migration_m == 0.0 || patch.sand.data.iter().all(|&s| s <= 0.0) {
         return None;
     }
     let geo = patch.height_m.geo;
     let w = patch.height_m.width;
+    let statics = statics.filter(|s| s.n() == w && patch.height_m.height == w);
     let mut out = patch.height_m.clone();
     // One field per epoch, so that each keeps its own noise cells cached.
     out.data.par_chunks_mut(w.max(1)).enumerate().for_each_init(
-        || (RippleField::new(), RippleField::new()),
-        |(then, now), (row, hs)| {
+        || (RippleField::new(), RippleField::new(), vec![0.0; w]),
+        |(then, now, moved_row), (row, hs)| {
+            if let Some(st) = statics {
+                st.moved_row(row, moved_row);
+            }
             for (col, hv) in hs.iter_mut().enumerate() {
                 let sand = f64::from(patch.sand.data[row * w + col]);
                 if sand > 0.0 {
-                    let (x, y) = geo.center_of(col, row);
-                    // The weights do not move with the ripples.
-                    let weights = now.weights(x, y);
-                    let moved = then.height_m(x, y, -migration_m, &weights)
-                        - now.height_m(x, y, 0.0, &weights);
+                    let moved = if statics.is_some() {
+                        moved_row[col]
+                    } else {
+                        let (x, y) = geo.center_of(col, row);
+                        // The weights do not move with the ripples.
+                        let weights = now.weights(x, y);
+                        then.height_m(x, y, -migration_m, &weights)
+                            - now.height_m(x, y, 0.0, &weights)
+                    };
                     *hv += (sand * moved) as f32;
                 }
             }

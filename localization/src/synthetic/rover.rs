@@ -5,7 +5,7 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
-use super::noise::{gaussian, sub_seed, value};
+use super::noise::{CachedValue, gaussian, sub_seed};
 use super::rover_params::RoverImagingParams;
 use super::shading::{HeightField, Sun, bilinear, radiance};
 use super::{
@@ -263,81 +263,88 @@ pub fn render_rover(
         .zip(valid.par_chunks_mut(n))
         .zip(heights.par_chunks_mut(n))
         .enumerate()
-        .for_each(|(row, ((o_row, v_row), h_row))| {
-            for col in 0..n {
-                // Where the rover maps this pixel, relative to its mosaic centre, back to the
-                // ground point it actually shows: undo the scale, then the rotation.
-                let (ex, ey) = ortho_geo.center_of(col, row);
-                let (qx, qy) = ((ex - rover_m[0]) * inv_scale, (ey - rover_m[1]) * inv_scale);
-                let (x, y) = (
-                    mosaic_center[0] + rot_cos * qx + rot_sin * qy,
-                    mosaic_center[1] - rot_sin * qx + rot_cos * qy,
-                );
-                let (dx, dy) = (x - rover_m[0], y - rover_m[1]);
-                let range_m = dx.hypot(dy);
-                if range_m < p.min_range_m || range_m > p.max_range_m {
-                    continue;
-                }
-                let azimuth_deg = dx.atan2(dy).to_degrees().rem_euclid(360.0);
-                let Some(k) = wedge_of(azimuth_deg, &wedges, p.wedge_width_deg) else {
-                    continue;
-                };
-                // Stereo dropouts: blotches where smooth noise, mapped to (0, 1) by a logistic
-                // approximation of the normal CDF, falls below the range-dependent rate.
-                let dropout = p.stereo_dropout_at_max_range * (range_m / p.max_range_m).powi(2);
-                let blotch = value(
-                    dropout_seed,
-                    x / DROPOUT_WAVELENGTH_M,
-                    y / DROPOUT_WAVELENGTH_M,
-                ) / VALUE_NOISE_SD;
-                if dropout > 0.0 && 1.0 / (1.0 + (-1.702 * blotch).exp()) < dropout {
-                    continue;
-                }
-                let target = to_px(x, y);
-                if !hf.contains(target[0], target[1]) {
-                    continue;
-                }
-                let target_z = hf.bilinear(target[0], target[1]);
-                if !hf.line_of_sight(cam, camera_z, target, target_z) {
-                    continue;
-                }
-                // Stereo errors: along the line of sight, growing with range².
-                let r2 = (range_m / 10.0).powi(2);
-                let (ux, uy) = (dx / range_m, dy / range_m);
-                let (sx, sy) = (x / STEREO_ERROR_WAVELENGTH_M, y / STEREO_ERROR_WAVELENGTH_M);
-                let shift_m =
-                    p.range_sigma_m_at_10m * r2 * value(jitter_seed, sx, sy) / VALUE_NOISE_SD;
-                let footprint_m = range_m * range_m * ifov_rad / p.mast_height_m;
-                let samples = if footprint_m < res {
-                    1
-                } else {
-                    (1 + (footprint_m / res).ceil() as usize).min(MAX_FOOTPRINT_SAMPLES)
-                };
-                let mut sum = 0.0;
-                for s in 0..samples {
-                    let along_m = if samples == 1 {
-                        shift_m
-                    } else {
-                        shift_m + footprint_m * (s as f64 / (samples - 1) as f64 - 0.5)
+        .for_each_init(
+            || {
+                (
+                    CachedValue::new(dropout_seed),
+                    CachedValue::new(jitter_seed),
+                    CachedValue::new(smooth_h_seed),
+                )
+            },
+            |(dropout_noise, jitter_noise, smooth_h_noise), (row, ((o_row, v_row), h_row))| {
+                for col in 0..n {
+                    // Where the rover maps this pixel, relative to its mosaic centre, back to the
+                    // ground point it actually shows: undo the scale, then the rotation.
+                    let (ex, ey) = ortho_geo.center_of(col, row);
+                    let (qx, qy) = ((ex - rover_m[0]) * inv_scale, (ey - rover_m[1]) * inv_scale);
+                    let (x, y) = (
+                        mosaic_center[0] + rot_cos * qx + rot_sin * qy,
+                        mosaic_center[1] - rot_sin * qx + rot_cos * qy,
+                    );
+                    let (dx, dy) = (x - rover_m[0], y - rover_m[1]);
+                    let range_m = dx.hypot(dy);
+                    if range_m < p.min_range_m || range_m > p.max_range_m {
+                        continue;
+                    }
+                    let azimuth_deg = dx.atan2(dy).to_degrees().rem_euclid(360.0);
+                    let Some(k) = wedge_of(azimuth_deg, &wedges, p.wedge_width_deg) else {
+                        continue;
                     };
-                    sum += radiance_at(to_px(x + ux * along_m, y + uy * along_m));
+                    // Stereo dropouts: blotches where smooth noise, mapped to (0, 1) by a logistic
+                    // approximation of the normal CDF, falls below the range-dependent rate.
+                    let dropout = p.stereo_dropout_at_max_range * (range_m / p.max_range_m).powi(2);
+                    let blotch = dropout_noise
+                        .at(x / DROPOUT_WAVELENGTH_M, y / DROPOUT_WAVELENGTH_M)
+                        / VALUE_NOISE_SD;
+                    if dropout > 0.0 && 1.0 / (1.0 + (-1.702 * blotch).exp()) < dropout {
+                        continue;
+                    }
+                    let target = to_px(x, y);
+                    if !hf.contains(target[0], target[1]) {
+                        continue;
+                    }
+                    let target_z = hf.bilinear(target[0], target[1]);
+                    if !hf.line_of_sight(cam, camera_z, target, target_z) {
+                        continue;
+                    }
+                    // Stereo errors: along the line of sight, growing with range².
+                    let r2 = (range_m / 10.0).powi(2);
+                    let (ux, uy) = (dx / range_m, dy / range_m);
+                    let (sx, sy) = (x / STEREO_ERROR_WAVELENGTH_M, y / STEREO_ERROR_WAVELENGTH_M);
+                    let shift_m =
+                        p.range_sigma_m_at_10m * r2 * jitter_noise.at(sx, sy) / VALUE_NOISE_SD;
+                    let footprint_m = range_m * range_m * ifov_rad / p.mast_height_m;
+                    let samples = if footprint_m < res {
+                        1
+                    } else {
+                        (1 + (footprint_m / res).ceil() as usize).min(MAX_FOOTPRINT_SAMPLES)
+                    };
+                    let mut sum = 0.0;
+                    for s in 0..samples {
+                        let along_m = if samples == 1 {
+                            shift_m
+                        } else {
+                            shift_m + footprint_m * (s as f64 / (samples - 1) as f64 - 0.5)
+                        };
+                        sum += radiance_at(to_px(x + ux * along_m, y + uy * along_m));
+                    }
+                    let w = &wedges[k];
+                    let response = (sum / samples as f64 / p.white_level)
+                        .max(0.0)
+                        .powf(w.gamma);
+                    let dn = w.offset_dn
+                        + w.gain * 255.0 * response
+                        + p.noise_sigma_dn * gaussian(sensor_seed, col as i64, row as i64);
+                    o_row[col] = dn.clamp(0.0, 255.0).round() as u8;
+                    v_row[col] = true;
+                    let seen = to_px(x + ux * shift_m, y + uy * shift_m);
+                    let height_error = 0.8 * smooth_h_noise.at(sx, sy) / VALUE_NOISE_SD
+                        + 0.6 * gaussian(white_h_seed, col as i64, row as i64);
+                    h_row[col] = hf.bilinear(seen[0], seen[1])
+                        + (p.height_sigma_m_at_10m * r2 * height_error) as f32;
                 }
-                let w = &wedges[k];
-                let response = (sum / samples as f64 / p.white_level)
-                    .max(0.0)
-                    .powf(w.gamma);
-                let dn = w.offset_dn
-                    + w.gain * 255.0 * response
-                    + p.noise_sigma_dn * gaussian(sensor_seed, col as i64, row as i64);
-                o_row[col] = dn.clamp(0.0, 255.0).round() as u8;
-                v_row[col] = true;
-                let seen = to_px(x + ux * shift_m, y + uy * shift_m);
-                let height_error = 0.8 * value(smooth_h_seed, sx, sy) / VALUE_NOISE_SD
-                    + 0.6 * gaussian(white_h_seed, col as i64, row as i64);
-                h_row[col] = hf.bilinear(seen[0], seen[1])
-                    + (p.height_sigma_m_at_10m * r2 * height_error) as f32;
-            }
-        });
+            },
+        );
 
     let (dem, dem_valid) = block_mean_dem(&heights, &valid, ortho_geo, p.dem_min_samples);
     Ok(RoverObservation {

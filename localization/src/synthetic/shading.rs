@@ -199,16 +199,6 @@ impl<'a> HeightField<'a> {
         bilinear(self.data, self.width, self.height, c, r)
     }
 
-    /// The highest sample that bilinear lookups within `level.tile_px − 1` pixels of point
-    /// `(c, r)` can read.
-    #[inline]
-    fn max_near(&self, level: &SkipLevel, c: f64, r: f64) -> f32 {
-        // Clamping is 1-Lipschitz, so clamped points stay as close as the points themselves.
-        let tx = (c.clamp(0.0, (self.width - 1) as f64) as usize) >> level.shift;
-        let ty = (r.clamp(0.0, (self.height - 1) as f64) as usize) >> level.shift;
-        level.max_near[ty * level.tiles_x + tx]
-    }
-
     /// Cosine of the angle between the surface normal at pixel `(col, row)` (central
     /// differences, one-sided at the edges) and the unit vector `sun` (x east, y north, z up).
     pub(super) fn cos_incidence(&self, col: usize, row: usize, sun: [f64; 3]) -> f64 {
@@ -233,17 +223,25 @@ impl<'a> HeightField<'a> {
         let Some(finest) = self.levels.last() else {
             return false;
         };
+        let (w_max, h_max) = ((self.width - 1) as f64, (self.height - 1) as f64);
         let mut k = 1;
         'march: while k <= k_last {
             let (c, r) = ray.at(k);
-            if !self.contains(c, r) || (ray.dz >= 0.0 && ray.z(k) > self.max_m) {
+            let z = ray.z(k);
+            if !self.contains(c, r) || (ray.dz >= 0.0 && z > self.max_m) {
                 return false;
             }
+            // The highest sample bilinear lookups within `tile_px − 1` pixels of the point can
+            // read: its clamped pixel's tile (clamping is 1-Lipschitz, so clamped points stay as
+            // close as the points themselves), found once for every level.
+            let (pc, pr) = (c.clamp(0.0, w_max) as usize, r.clamp(0.0, h_max) as usize);
             for level in &self.levels {
                 let k_end = k.saturating_add(level.tile_px - 1).min(k_last);
-                let z_low = ray.z(k).min(ray.z(k_end));
+                let z_low = z.min(ray.z(k_end));
+                let near =
+                    level.max_near[(pr >> level.shift) * level.tiles_x + (pc >> level.shift)];
                 // 1 mm absorbs the rounding of a bilinear blend above its largest corner.
-                if z_low + RAY_CLEARANCE_M > self.max_near(level, c, r) + 1e-3 {
+                if z_low + RAY_CLEARANCE_M > near + 1e-3 {
                     if k_end == k_last {
                         return false;
                     }

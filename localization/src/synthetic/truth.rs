@@ -6,6 +6,7 @@ use rayon::prelude::*;
 #[cfg(test)]
 use super::noise::value;
 use super::noise::{CachedValue, SplitMix, ValueFbm, floor_i64, gaussian, hash2, sub_seed};
+use super::statics::PatchStatics;
 use super::{ORBITAL_DEM_RESOLUTION_M_PER_PX, SyntheticError, TRUTH_RESOLUTION_M_PER_PX};
 
 /// Truth pixels per orbital DEM block along each axis (1 m / 0.25 m).
@@ -227,7 +228,7 @@ fn sand_cover(dem: &Raster<f32>, seed: u64, x: f64, y: f64, ground_m: f64) -> Sa
 /// [`sand_cover`] of one seed with the ring offsets worked out once and the noises cached
 /// ([`CachedValue`]): bit-identical, and cheap for neighbouring pixels.
 #[derive(Clone, Debug)]
-struct SandCoverField {
+pub(super) struct SandCoverField {
     /// Offsets of the ring samples, metres.
     ring: [(f64, f64); 8],
     patchy: CachedValue,
@@ -235,7 +236,8 @@ struct SandCoverField {
 }
 
 impl SandCoverField {
-    fn new(seed: u64) -> Self {
+    /// The cover of seed `seed`.
+    pub(super) fn new(seed: u64) -> Self {
         Self {
             ring: std::array::from_fn(|k| {
                 let a = f64::from(k as u8) * std::f64::consts::FRAC_PI_4;
@@ -248,13 +250,24 @@ impl SandCoverField {
 
     /// [`sand_cover`] at map point `(x, y)` whose map-DEM height is `ground_m`.
     fn at(&mut self, dem: &Raster<f32>, x: f64, y: f64, ground_m: f64) -> SandCover {
+        let depth = self.depth_m(dem, x, y, ground_m);
+        self.with_depth(depth, x, y)
+    }
+
+    /// The depth of map point `(x, y)` (map-DEM height `ground_m`) below the mean map-DEM
+    /// height on the interdune ring around it, metres (independent of the seed).
+    pub(super) fn depth_m(&self, dem: &Raster<f32>, x: f64, y: f64, ground_m: f64) -> f64 {
         let mut ring = 0.0;
         for &(dx, dy) in &self.ring {
             ring += dem
                 .sample_bilinear(x + dx, y + dy)
                 .map_or(ground_m, f64::from);
         }
-        let depth = ring / 8.0 - ground_m;
+        ring / 8.0 - ground_m
+    }
+
+    /// [`sand_cover`] at map point `(x, y)`, given its [`SandCoverField::depth_m`].
+    fn with_depth(&mut self, depth: f64, x: f64, y: f64) -> SandCover {
         let patchy = self.patchy.at(x / INTERDUNE_NOISE_M, y / INTERDUNE_NOISE_M) / VALUE_SD;
         let index = depth / INTERDUNE_DEPTH_M + INTERDUNE_NOISE_WEIGHT * patchy;
         let (t0, tw) = INTERDUNE_THRESHOLD;
@@ -422,34 +435,23 @@ impl ClassLook {
 
     /// The look at map point `(x, y)` (map-DEM height `ground_m`): classes blended bilinearly
     /// between terrain pixel centres, so class borders are not staircases of map pixels; the
-    /// sand class by its [`sand_cover`] there.
+    /// sand class by its [`sand_cover`] there (from its ring depth `depth_m` when known).
     fn blended(
         layers: &MapLayers,
         cover: &mut SandCoverField,
         x: f64,
         y: f64,
         ground_m: f64,
+        depth_m: Option<f64>,
     ) -> Self {
-        let terrain = &layers.terrain;
-        let (c, r) = terrain.geo.pixel_of(x, y);
-        let (w, h) = (terrain.width, terrain.height);
-        let c = (c - 0.5).clamp(0.0, (w - 1) as f64);
-        let r = (r - 0.5).clamp(0.0, (h - 1) as f64);
-        let (c0, r0) = (c as usize, r as usize);
-        let (c1, r1) = ((c0 + 1).min(w - 1), (r0 + 1).min(h - 1));
-        let (tx, ty) = (c - c0 as f64, r - r0 as f64);
         let mut look = Self::default();
         let mut sand_look = None;
-        for (cc, rr, k) in [
-            (c0, r0, (1.0 - tx) * (1.0 - ty)),
-            (c1, r0, tx * (1.0 - ty)),
-            (c0, r1, (1.0 - tx) * ty),
-            (c1, r1, tx * ty),
-        ] {
-            let code = terrain.data[rr * w + cc];
+        for (code, k) in terrain_corners(&layers.terrain, x, y) {
             let corner = if code == TerrainClass::Sand.code() {
                 *sand_look.get_or_insert_with(|| {
-                    Self::of_sand_cover(cover.at(&layers.dem, x, y, ground_m))
+                    let depth =
+                        depth_m.unwrap_or_else(|| cover.depth_m(&layers.dem, x, y, ground_m));
+                    Self::of_sand_cover(cover.with_depth(depth, x, y))
                 })
             } else {
                 Self::of_code(code)
@@ -471,6 +473,25 @@ impl ClassLook {
             Some(code) => Self::of_code(code).rocks_per_m2,
         }
     }
+}
+
+/// The terrain-class codes of the four map pixels around map point `(x, y)` and their bilinear
+/// weights, in the order [`ClassLook::blended`] adds them.
+pub(super) fn terrain_corners(terrain: &Raster<u8>, x: f64, y: f64) -> [(u8, f64); 4] {
+    let (c, r) = terrain.geo.pixel_of(x, y);
+    let (w, h) = (terrain.width, terrain.height);
+    let c = (c - 0.5).clamp(0.0, (w - 1) as f64);
+    let r = (r - 0.5).clamp(0.0, (h - 1) as f64);
+    let (c0, r0) = (c as usize, r as usize);
+    let (c1, r1) = ((c0 + 1).min(w - 1), (r0 + 1).min(h - 1));
+    let (tx, ty) = (c - c0 as f64, r - r0 as f64);
+    [
+        (c0, r0, (1.0 - tx) * (1.0 - ty)),
+        (c1, r0, tx * (1.0 - ty)),
+        (c0, r1, (1.0 - tx) * ty),
+        (c1, r1, tx * ty),
+    ]
+    .map(|(cc, rr, k)| (terrain.data[rr * w + cc], k))
 }
 
 /// One rock: an ellipsoidal dome sitting on the ground.
@@ -563,6 +584,19 @@ pub fn truth_patch(
     half_size_m: f64,
     seed: u64,
 ) -> Result<TruthPatch, SyntheticError> {
+    let (geo, n) = patch_grid(layers, center_m, half_size_m)?;
+    Ok(truth_patch_on(layers, geo, n, seed, None))
+}
+
+/// The grid of [`truth_patch`]: its transform and its side, pixels.
+///
+/// # Errors
+/// As [`truth_patch`].
+pub(crate) fn patch_grid(
+    layers: &MapLayers,
+    center_m: [f64; 2],
+    half_size_m: f64,
+) -> Result<(GeoTransform, usize), SyntheticError> {
     for (field, value) in [("center_m[0]", center_m[0]), ("center_m[1]", center_m[1])] {
         if !value.is_finite() {
             return Err(SyntheticError::InvalidParameter {
@@ -606,7 +640,20 @@ pub fn truth_patch(
     }
 
     let n = blocks as usize * BLOCK_PX;
-    let geo = GeoTransform::new(ox, oy, TRUTH_RESOLUTION_M_PER_PX);
+    Ok((GeoTransform::new(ox, oy, TRUTH_RESOLUTION_M_PER_PX), n))
+}
+
+/// The truth patch of [`truth_patch`] on its grid (`geo`, `n`: see [`patch_grid`]), with the
+/// seed-independent fields taken from `statics` when given: the same values, computed once per
+/// map (see [`super::statics`]).
+pub(crate) fn truth_patch_on(
+    layers: &MapLayers,
+    geo: GeoTransform,
+    n: usize,
+    seed: u64,
+    statics: Option<&PatchStatics<'_>>,
+) -> TruthPatch {
+    let statics = statics.filter(|s| s.n() == n);
     let detail = ValueFbm::new(sub_seed(seed, SALT_DETAIL), DETAIL_WAVELENGTH_M, 4);
     let texture = ValueFbm::new(sub_seed(seed, SALT_TEXTURE), TEXTURE_WAVELENGTH_M, 3);
     let grain_seed = sub_seed(seed, SALT_GRAIN);
@@ -623,12 +670,18 @@ pub fn truth_patch(
         .for_each_init(
             || {
                 let rows = (vec![0.0; n], vec![0.0; n]);
-                (RippleField::new(), SandCoverField::new(cover_seed), rows)
+                let static_rows = (vec![0.0f32; n], vec![0.0; n], vec![0.0; n]);
+                let fields = (RippleField::new(), SandCoverField::new(cover_seed));
+                (fields, rows, static_rows)
             },
-            |(ripple, cover, (detail_row, texture_row)), (row, ((h_row, a_row), s_row))| {
+            |((ripple, cover), (detail_row, texture_row), (ground_row, depth_row, ripple_row)),
+             (row, ((h_row, a_row), s_row))| {
                 let y = geo.center_of(0, row).1;
                 detail.row(&xs, y, detail_row);
                 texture.row(&xs, y, texture_row);
+                if let Some(st) = statics {
+                    st.truth_row(row, ground_row, depth_row, ripple_row);
+                }
                 for (col, ((h, a), sd)) in h_row
                     .iter_mut()
                     .zip(a_row.iter_mut())
@@ -637,11 +690,22 @@ pub fn truth_patch(
                 {
                     let x = xs[col];
                     // Pixel centres lie inside the DEM (checked above); the fallback is never used.
-                    let ground = f64::from(layers.dem.sample_bilinear(x, y).unwrap_or(0.0));
-                    let look = ClassLook::blended(layers, cover, x, y, ground);
+                    let (ground, depth) = match statics {
+                        Some(_) => (f64::from(ground_row[col]), Some(depth_row[col])),
+                        None => {
+                            let g = layers.dem.sample_bilinear(x, y).unwrap_or(0.0);
+                            (f64::from(g), None)
+                        }
+                    };
+                    let look = ClassLook::blended(layers, cover, x, y, ground, depth);
                     let ripples = if look.sand > 0.0 {
-                        let weights = ripple.weights(x, y);
-                        look.sand * ripple.height_m(x, y, 0.0, &weights)
+                        match statics {
+                            Some(_) => look.sand * ripple_row[col],
+                            None => {
+                                let weights = ripple.weights(x, y);
+                                look.sand * ripple.height_m(x, y, 0.0, &weights)
+                            }
+                        }
                     } else {
                         0.0
                     };
@@ -669,7 +733,7 @@ pub fn truth_patch(
         &mut albedo,
     );
 
-    Ok(TruthPatch {
+    TruthPatch {
         height_m: Raster {
             width: n,
             height: n,
@@ -688,7 +752,7 @@ pub fn truth_patch(
             geo,
             data: sand,
         },
-    })
+    }
 }
 
 /// Adds the rocks of every cell that can reach the `n × n` grid at `geo`. Where rocks overlap
