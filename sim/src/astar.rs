@@ -33,6 +33,11 @@
 //! bit-equal `f64`: on uniform-cost maps, sums that are equal in exact arithmetic may round
 //! differently, and those are ordered by their rounded values.
 //!
+//! **No path, found early.** A search that runs past [`REACH_CHECK_AFTER`] expansions checks
+//! once, by a bidirectional flood fill over the passable cells, whether the goal can be reached
+//! at all, and stops if it cannot; otherwise it carries on unchanged, so the paths are exactly
+//! those of the plain search (tested).
+//!
 //! **No per-call reset.** Each cell's state carries a generation stamp; a cell whose stamp is
 //! not the current call's is "unseen", so a call costs time proportional to the cells it
 //! touches, not to the grid size (16 bytes of state per cell, allocated once in
@@ -76,7 +81,8 @@ struct CellState {
 
 /// A* planner for one grid size, owning the scratch memory reused by every [`AStar::plan`].
 ///
-/// Memory: 16 bytes per cell plus the open set.
+/// Memory: 16 bytes per cell plus the open set, and 2 bits per cell plus a frontier for the
+/// reachability check of a long search ([`REACH_CHECK_AFTER`]).
 #[derive(Debug, Clone)]
 pub struct AStar {
     width: usize,
@@ -85,7 +91,18 @@ pub struct AStar {
     heap: OpenSet,
     generation: u32,
     expansions: usize,
+    /// Scratch of the reachability check ([`REACH_CHECK_AFTER`]).
+    reach: Reach,
+    /// Expansions after which a search checks that the goal is reachable at all.
+    reach_check_after: usize,
 }
+
+/// A search still running after this many expansions first checks, by a bidirectional flood
+/// fill, that the goal is reachable at all, and gives up at once if it is not. Without a path
+/// A* closes every cell it can reach (a NO_PATH fault on a large map: most of a traverse's
+/// planning time); the flood fill proves the same an order of magnitude faster. With a path it
+/// changes nothing but the time: the search then goes on as it was.
+pub const REACH_CHECK_AFTER: usize = 16_384;
 
 impl AStar {
     /// A planner for `width × height` grids.
@@ -105,7 +122,18 @@ impl AStar {
             heap: OpenSet::default(),
             generation: 0,
             expansions: 0,
+            reach: Reach::default(),
+            reach_check_after: REACH_CHECK_AFTER,
         }
+    }
+
+    /// This planner with the reachability check after `expansions` expansions instead of
+    /// [`REACH_CHECK_AFTER`] (`usize::MAX`: never). For tests and benchmarks: the paths are the
+    /// same for any value.
+    #[must_use]
+    pub fn with_reach_check_after(mut self, expansions: usize) -> Self {
+        self.reach_check_after = expansions;
+        self
     }
 
     /// Grid width in cells.
@@ -166,6 +194,8 @@ impl AStar {
         let open_stamp = self.next_generation();
         let width = self.width;
         let height = self.height;
+        let reach_check_after = self.reach_check_after;
+        let reach = &mut self.reach;
         let mut search = Search {
             cells: &mut self.cells,
             heap: &mut self.heap,
@@ -212,6 +242,11 @@ impl AStar {
             expansions += 1;
             if cur == goal {
                 found = true;
+                break;
+            }
+            if expansions == reach_check_after
+                && !reach.connected(width, height, start, goal, |i| cell_cost(i) < f32::INFINITY)
+            {
                 break;
             }
             let (row, col) = (cur / width, cur % width);
@@ -278,6 +313,72 @@ impl AStar {
         }
         self.generation += 1;
         2 * self.generation
+    }
+}
+
+/// Scratch of [`Reach::connected`]: the cells each side has reached (bit sets) and its queue.
+#[derive(Debug, Clone, Default)]
+struct Reach {
+    seen: [Vec<u64>; 2],
+    queue: [std::collections::VecDeque<u32>; 2],
+}
+
+impl Reach {
+    /// Whether `goal` can be reached from `start` (both passable) on the `width × height` grid
+    /// through cells that are `passable`. A* moves diagonally only between two passable
+    /// orthogonal cells, so its reachable set is the 4-connected one. Breadth-first from both
+    /// ends, one cell of each in turn: the answer is known when the two meet, or when one side
+    /// has run out of cells (its component, without the other end), so the work is about twice
+    /// the smaller component, not the start's whole component.
+    fn connected(
+        &mut self,
+        width: usize,
+        height: usize,
+        start: usize,
+        goal: usize,
+        passable: impl Fn(usize) -> bool,
+    ) -> bool {
+        let words = (width * height).div_ceil(64);
+        for (seen, queue) in self.seen.iter_mut().zip(&mut self.queue) {
+            seen.clear();
+            seen.resize(words, 0);
+            queue.clear();
+        }
+        let mark = |seen: &mut [u64], i: usize| seen[i / 64] |= 1 << (i % 64);
+        let marked = |seen: &[u64], i: usize| seen[i / 64] & (1 << (i % 64)) != 0;
+        for (side, end) in [start, goal].into_iter().enumerate() {
+            mark(&mut self.seen[side], end);
+            self.queue[side].push_back(end as u32);
+        }
+        if start == goal {
+            return true;
+        }
+        loop {
+            for side in 0..2 {
+                let Some(cell) = self.queue[side].pop_front() else {
+                    return false;
+                };
+                let cur = cell as usize;
+                let (row, col) = (cur / width, cur % width);
+                for (inside, nb) in [
+                    (row > 0, cur.wrapping_sub(width)),
+                    (row + 1 < height, cur + width),
+                    (col > 0, cur.wrapping_sub(1)),
+                    (col + 1 < width, cur + 1),
+                ] {
+                    if !inside || marked(&self.seen[side], nb) {
+                        continue;
+                    }
+                    if marked(&self.seen[1 - side], nb) {
+                        return true;
+                    }
+                    if passable(nb) {
+                        mark(&mut self.seen[side], nb);
+                        self.queue[side].push_back(nb as u32);
+                    }
+                }
+            }
+        }
     }
 }
 
@@ -671,6 +772,51 @@ mod tests {
             (20, 30, 2)
         );
         assert_eq!(pool.clone().free_len(), 0);
+    }
+
+    #[test]
+    fn reach_check_changes_no_path() {
+        let mut rng = ChaCha8Rng::seed_from_u64(77);
+        let (mut with_paths, mut without) = (0, 0);
+        for trial in 0..300 {
+            let (w, h) = (rng.random_range(1..=40), rng.random_range(1..=40));
+            // Dense obstacles often cut the grid into components.
+            let blocked = rng.random_range(0.0..0.55);
+            let cost = random_grid(&mut rng, w, h, blocked);
+            let mut never = AStar::new(w, h).with_reach_check_after(usize::MAX);
+            let mut at_once = AStar::new(w, h).with_reach_check_after(1);
+            let mut soon = AStar::new(w, h).with_reach_check_after(7);
+            for _ in 0..4 {
+                let (a, b) = (rng.random_range(0..w * h), rng.random_range(0..w * h));
+                let want = never.plan(a, b, 1.0, |i| cost[i]);
+                assert_eq!(at_once.plan(a, b, 1.0, |i| cost[i]), want, "trial {trial}");
+                assert_eq!(soon.plan(a, b, 1.0, |i| cost[i]), want, "trial {trial}");
+                match want {
+                    Some(_) => with_paths += 1,
+                    None => without += 1,
+                }
+            }
+        }
+        assert!(with_paths > 100 && without > 100, "{with_paths} {without}");
+    }
+
+    #[test]
+    fn reach_check_stops_a_search_without_a_path_early() {
+        // A 200 × 200 open grid whose goal is walled into a corner pocket.
+        let (w, h) = (200, 200);
+        let cost: Vec<f32> = (0..w * h)
+            .map(|i| {
+                let (r, c) = (i / w, i % w);
+                if (r == 190 && c >= 190) || (c == 190 && r >= 190) {
+                    f32::INFINITY
+                } else {
+                    1.0
+                }
+            })
+            .collect();
+        let mut astar = AStar::new(w, h).with_reach_check_after(1000);
+        assert_eq!(astar.plan(0, w * h - 1, 1.0, |i| cost[i]), None);
+        assert_eq!(astar.expansions(), 1000);
     }
 
     #[test]
