@@ -276,6 +276,9 @@ pub fn run_activity(
         format!("{input_bytes} bytes at {} B/s", params.link_bytes_per_s),
     );
     let mut stored: Vec<HbsFile> = inputs.to_vec();
+    // Files whose checksum is to be checked before the next run: all before run 1; before run
+    // 2 only those a storage upset changed since (the others passed run 1's check unchanged).
+    let mut unchecked: Vec<usize> = (0..stored.len()).collect();
 
     let mut results: Vec<HbsFile> = Vec::with_capacity(2);
     for run in 1..=2u8 {
@@ -289,6 +292,7 @@ pub fn run_activity(
             if let Some(f) = stored.get_mut(k) {
                 flip_bit(&mut f.bytes, rng);
                 log.upsets.push(Upset::Storage);
+                unchecked.push(k);
             }
         }
         let step = if run == 1 {
@@ -296,7 +300,11 @@ pub fn run_activity(
         } else {
             HbsStep::Run2
         };
-        if let Some(bad) = stored.iter().find(|f| !f.intact()) {
+        unchecked.sort_unstable();
+        unchecked.dedup();
+        let bad = unchecked.iter().map(|&k| &stored[k]).find(|f| !f.intact());
+        unchecked.clear();
+        if let Some(bad) = bad {
             log.event(
                 step,
                 format!("{} failed its MD5 check; run not started", bad.name),
@@ -317,16 +325,20 @@ pub fn run_activity(
             log.outcome = Err(LossReason::Timeout { run });
             return log;
         }
-        // The run works on an in-memory copy that may take an upset after the checksum check.
-        let mut memory = stored.clone();
-        if rng.random::<f64>() < params.p_flip_memory {
+        // The run works on an in-memory copy that may take an upset after the checksum check
+        // (copied only when it does: otherwise it equals the stored files).
+        let bytes = if rng.random::<f64>() < params.p_flip_memory {
+            let mut memory = stored.clone();
             let k = rng.random_range(0..memory.len().max(1));
             if let Some(f) = memory.get_mut(k) {
                 flip_bit(&mut f.bytes, rng);
                 log.upsets.push(Upset::Memory);
             }
-        }
-        let result = HbsFile::new(format!("onbd_result_{run}.dat"), algorithm(&memory));
+            algorithm(&memory)
+        } else {
+            algorithm(&stored)
+        };
+        let result = HbsFile::new(format!("onbd_result_{run}.dat"), bytes);
         log.duration_s += params.run_s;
         log.event(
             step,

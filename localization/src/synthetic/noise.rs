@@ -167,6 +167,12 @@ impl ValueFbm {
                 let ix = floor_i64(x);
                 let [a, b, c, d] = match cell {
                     Some((cx, corners)) if cx == ix => corners,
+                    // The next cell east shares its west corners with this one's east ones.
+                    Some((cx, [_, b, _, d])) if cx.checked_add(1) == Some(ix) => {
+                        let corners = [b, lattice(s, ix + 1, iy), d, lattice(s, ix + 1, iy + 1)];
+                        cell = Some((ix, corners));
+                        corners
+                    }
                     _ => {
                         let corners = [
                             lattice(s, ix, iy),
