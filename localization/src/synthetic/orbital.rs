@@ -4,7 +4,7 @@ use maps::Raster;
 use rayon::prelude::*;
 
 use super::noise::{CachedValue, SplitMix, ValueFbm, gaussian, sub_seed};
-use super::shading::{HeightField, Sun, bilinear, gaussian_blur, radiance};
+use super::shading::{ExactDiv, HeightField, Sun, bilinear, gaussian_blur, radiance};
 use super::statics::PatchStatics;
 use super::truth::RippleField;
 use super::{ORBITAL_DEM_RESOLUTION_M_PER_PX, SyntheticError, TruthPatch, check_param};
@@ -266,6 +266,7 @@ pub(crate) fn render_orbital_with(
     let hf = HeightField::new(epoch_height.as_ref().unwrap_or(&patch.height_m));
     let (w, h) = (hf.width, hf.height);
     let sun = Sun::new(p.sun_azimuth_deg, p.sun_elevation_deg, hf.resolution_m);
+    let shadows = hf.shadows(sun);
     let scale = 255.0 / p.white_level;
     let tracks = dust_devil_tracks(patch, p, sub_seed(seed, SALT_TRACKS));
     let change = ValueFbm::new(
@@ -286,7 +287,7 @@ pub(crate) fn render_orbital_with(
             }
             for (col, v) in out.iter_mut().enumerate() {
                 let cos = hf.cos_incidence(col, row, sun.dir);
-                let lit = cos > 0.0 && hf.sunlit(col, row, &sun);
+                let lit = cos > 0.0 && shadows.sunlit(col, row);
                 let x = xs[col];
                 let darkening: f64 = tracks.iter().map(|t| t.darkening_at(x, y)).sum();
                 let factor = (1.0 + p.albedo_change_sigma * change_row[col] / FBM_SD)
@@ -306,15 +307,18 @@ pub(crate) fn render_orbital_with(
         let k = p.ortho_displacement_sigma_m / VALUE_NOISE_SD;
         let lambda = p.ortho_displacement_wavelength_m;
         let src = linear;
+        let per_px = ExactDiv::new(res);
         let mut warped = vec![0.0f32; w * h];
         warped.par_chunks_mut(w.max(1)).enumerate().for_each_init(
             || (CachedValue::new(sx), CachedValue::new(sy)),
             |(noise_x, noise_y), (row, out)| {
+                let y_l = geo.center_of(0, row).1 / lambda;
                 for (col, v) in out.iter_mut().enumerate() {
-                    let (x, y) = geo.center_of(col, row);
-                    let dx = k * noise_x.at(x / lambda, y / lambda);
-                    let dy = k * noise_y.at(x / lambda, y / lambda);
-                    *v = bilinear(&src, w, h, col as f64 + dx / res, row as f64 - dy / res);
+                    let x_l = geo.center_of(col, row).0 / lambda;
+                    let dx = k * noise_x.at(x_l, y_l);
+                    let dy = k * noise_y.at(x_l, y_l);
+                    let (dc, dr) = (per_px.of(dx), per_px.of(dy));
+                    *v = bilinear(&src, w, h, col as f64 + dc, row as f64 - dr);
                 }
             },
         );
@@ -434,6 +438,11 @@ impl Track {
         let s = dx * self.along[0] + dy * self.along[1];
         let across = -dx * self.along[1] + dy * self.along[0];
         let (amp, wavelength) = TRACK_MEANDER_M;
+        // Farther across than the meander can bring the edge: the blend below is exactly 0
+        // (`t` clamps to 0 with a whole edge width to spare), so skip its sine.
+        if across.abs() > self.half_width_m + amp + TRACK_EDGE_M {
+            return 0.0;
+        }
         let meander = amp * (std::f64::consts::TAU * s / wavelength + self.phase).sin();
         let d = (across - meander).abs();
         let t = ((self.half_width_m - d) / TRACK_EDGE_M + 0.5).clamp(0.0, 1.0);

@@ -191,6 +191,7 @@ pub fn render_rover(
         })
         .collect();
     let sun = Sun::new(sun_azimuth_deg, sun_elevation_deg, res);
+    let shadows = hf.shadows(sun);
     // Geometric errors of the mosaic (drawn after the lighting so those draws do not move).
     let geometry_errors = RoverGeometryErrors {
         heading_error_deg: p.heading_sigma_deg * normal(&mut rng),
@@ -234,7 +235,7 @@ pub fn render_rover(
                     continue;
                 }
                 let cos = hf.cos_incidence(col, row, sun.dir);
-                let lit = cos > 0.0 && hf.sunlit(col, row, &sun);
+                let lit = cos > 0.0 && shadows.sunlit(col, row);
                 let albedo = patch.albedo.data[row * hf.width + col];
                 *v = radiance(albedo, cos, lit, p.ambient) as f32;
             }

@@ -148,6 +148,8 @@ pub(super) struct HeightField<'a> {
     pub(super) resolution_m: f64,
     pub(super) max_m: f32,
     levels: Vec<SkipLevel>,
+    /// Division by the central and one-sided difference spacings, `2 × res` and `res`.
+    per_spacing: [ExactDiv; 2],
 }
 
 impl<'a> HeightField<'a> {
@@ -176,6 +178,7 @@ impl<'a> HeightField<'a> {
             width: w,
             height: h,
             resolution_m: raster.geo.resolution_m_per_px,
+            per_spacing: [1.0, 2.0].map(|k: f64| ExactDiv::new(k * raster.geo.resolution_m_per_px)),
             max_m,
             levels,
         }
@@ -205,11 +208,10 @@ impl<'a> HeightField<'a> {
         let (w, h) = (self.width, self.height);
         let (west, east) = (col.saturating_sub(1), (col + 1).min(w - 1));
         let (north, south) = (row.saturating_sub(1), (row + 1).min(h - 1));
-        let res = self.resolution_m;
-        let dz_dx = f64::from(self.at(east, row) - self.at(west, row))
-            / ((east - west).max(1) as f64 * res);
-        let dz_dy = f64::from(self.at(col, north) - self.at(col, south))
-            / ((south - north).max(1) as f64 * res);
+        // Spacing `(east − west).max(1) × res`: 1 or 2 pixels.
+        let per = |span: usize| self.per_spacing[usize::from(span >= 2)];
+        let dz_dx = per(east - west).of(f64::from(self.at(east, row) - self.at(west, row)));
+        let dz_dy = per(south - north).of(f64::from(self.at(col, north) - self.at(col, south)));
         (-dz_dx * sun[0] - dz_dy * sun[1] + sun[2]) / (1.0 + dz_dx * dz_dx + dz_dy * dz_dy).sqrt()
     }
 
@@ -220,6 +222,12 @@ impl<'a> HeightField<'a> {
     /// that of [`HeightField::ray_hits_reference`] (the grid is convex and a rising ray stays
     /// risen, so nothing skipped could have ended the march differently).
     pub(super) fn ray_hits(&self, ray: &Ray, k_last: usize) -> bool {
+        self.march(ray, k_last, None)
+    }
+
+    /// [`HeightField::ray_hits`], ending also where a rising ray clears `ahead` at its point:
+    /// per pixel, a bound on every sample the ray can still read (see [`SunShadows`]).
+    fn march(&self, ray: &Ray, k_last: usize, ahead: Option<&[f32]>) -> bool {
         let Some(finest) = self.levels.last() else {
             return false;
         };
@@ -235,6 +243,12 @@ impl<'a> HeightField<'a> {
             // read: its clamped pixel's tile (clamping is 1-Lipschitz, so clamped points stay as
             // close as the points themselves), found once for every level.
             let (pc, pr) = (c.clamp(0.0, w_max) as usize, r.clamp(0.0, h_max) as usize);
+            if let Some(ahead) = ahead
+                && ray.dz >= 0.0
+                && z + RAY_CLEARANCE_M > ahead[pr * self.width + pc] + 1e-3
+            {
+                return false;
+            }
             for level in &self.levels {
                 let k_end = k.saturating_add(level.tile_px - 1).min(k_last);
                 let z_low = z.min(ray.z(k_end));
@@ -296,8 +310,14 @@ impl<'a> HeightField<'a> {
 
     /// Whether pixel `(col, row)` sees the sun: march towards it and report a shadow if the
     /// terrain rises above the ray. Terrain beyond the grid casts no shadow.
+    #[cfg(test)]
     pub(super) fn sunlit(&self, col: usize, row: usize, sun: &Sun) -> bool {
         !self.ray_hits(&self.sun_ray(col, row, sun), usize::MAX)
+    }
+
+    /// [`HeightField::sunlit`] for many pixels under one `sun` (see [`SunShadows`]).
+    pub(super) fn shadows(&self, sun: Sun) -> SunShadows<'_, 'a> {
+        SunShadows::new(self, sun)
     }
 
     /// The sight line from a camera at `camera` (pixel-centre coordinates, height `camera_z`)
@@ -341,6 +361,121 @@ impl<'a> HeightField<'a> {
     ) -> bool {
         let (ray, steps) = Self::sight_ray(camera, camera_z, target, target_z);
         !self.ray_hits(&ray, steps)
+    }
+}
+
+/// Cast shadows under one sun: [`HeightField::sunlit`], with a bound that ends most marches
+/// early.
+///
+/// A sun ray moves the same way across the grid from every pixel, so every sample it can still
+/// read from a point lies in the quadrant ahead of that point (columns and rows no further back
+/// than the bilinear lookup at the point reads). `ahead` holds per pixel the highest sample of
+/// that quadrant (a two-pass running maximum); a rising ray above it can hit nothing more, the
+/// same argument as the march's end above the grid's highest sample, so the answers are
+/// exactly [`HeightField::sunlit`]'s (tested).
+#[derive(Debug)]
+pub(super) struct SunShadows<'h, 'a> {
+    hf: &'h HeightField<'a>,
+    sun: Sun,
+    ahead: Vec<f32>,
+}
+
+impl<'h, 'a> SunShadows<'h, 'a> {
+    fn new(hf: &'h HeightField<'a>, sun: Sun) -> Self {
+        let (w, h) = (hf.width, hf.height);
+        let mut ahead = vec![f32::NEG_INFINITY; w * h];
+        if w > 0 && h > 0 {
+            // Along each row: the columns a ray from column c can read (c and everything on its
+            // way, one more for the bilinear lookup's east neighbour).
+            for (out, row) in ahead.chunks_exact_mut(w).zip(hf.data.chunks_exact(w)) {
+                if sun.step_col < 0.0 {
+                    let mut m = f32::NEG_INFINITY;
+                    for c in 0..w {
+                        m = m.max(row[c]);
+                        out[c] = m;
+                    }
+                    // Column c reads c + 1 too.
+                    for c in 0..w - 1 {
+                        out[c] = out[c + 1];
+                    }
+                } else if sun.step_col > 0.0 {
+                    let mut m = f32::NEG_INFINITY;
+                    for c in (0..w).rev() {
+                        m = m.max(row[c]);
+                        out[c] = m;
+                    }
+                } else {
+                    let m = row.iter().copied().fold(f32::NEG_INFINITY, f32::max);
+                    out.fill(m);
+                }
+            }
+            // Down (or up) the columns, likewise.
+            let rows: Vec<usize> = if sun.step_row > 0.0 {
+                (0..h).rev().collect()
+            } else {
+                (0..h).collect()
+            };
+            if sun.step_row == 0.0 {
+                for c in 0..w {
+                    let m = (0..h)
+                        .map(|r| ahead[r * w + c])
+                        .fold(f32::NEG_INFINITY, f32::max);
+                    (0..h).for_each(|r| ahead[r * w + c] = m);
+                }
+            } else {
+                let mut m = vec![f32::NEG_INFINITY; w];
+                for &r in &rows {
+                    for (mc, a) in m.iter_mut().zip(&mut ahead[r * w..(r + 1) * w]) {
+                        *mc = mc.max(*a);
+                        *a = *mc;
+                    }
+                }
+                if sun.step_row < 0.0 {
+                    // Row r reads r + 1 too.
+                    for r in 0..h - 1 {
+                        let (top, below) = ahead.split_at_mut((r + 1) * w);
+                        top[r * w..].copy_from_slice(&below[..w]);
+                    }
+                }
+            }
+        }
+        Self { hf, sun, ahead }
+    }
+
+    /// [`HeightField::sunlit`]`(col, row, sun)`.
+    pub(super) fn sunlit(&self, col: usize, row: usize) -> bool {
+        let ray = self.hf.sun_ray(col, row, &self.sun);
+        !self.hf.march(&ray, usize::MAX, Some(&self.ahead))
+    }
+}
+
+/// `x / d` for one divisor `d`, as a multiplication when `d` is a power of two: dividing by
+/// `2^k` and multiplying by `2^-k` give the same correctly rounded result, and the
+/// multiplication is several times faster.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct ExactDiv {
+    d: f64,
+    /// `1 / d` if that is exact (a power of two), else `None`.
+    inv: Option<f64>,
+}
+
+impl ExactDiv {
+    pub(super) fn new(d: f64) -> Self {
+        let inv = 1.0 / d;
+        let power_of_two = |v: f64| v.is_normal() && v.to_bits() & ((1u64 << 52) - 1) == 0;
+        Self {
+            d,
+            inv: (power_of_two(d) && power_of_two(inv)).then_some(inv),
+        }
+    }
+
+    /// `x / d`.
+    #[inline]
+    pub(super) fn of(self, x: f64) -> f64 {
+        match self.inv {
+            Some(inv) => x * inv,
+            None => x / self.d,
+        }
     }
 }
 
@@ -562,6 +697,50 @@ mod tests {
     }
 
     #[test]
+    fn shadows_with_the_bound_ahead_equal_the_plain_march() {
+        use crate::synthetic::noise::{ValueFbm, gaussian};
+        let (w, h) = (90, 70);
+        let f = ValueFbm::new(8, 5.0, 4);
+        let mut ras = Raster::filled(w, h, GeoTransform::new(0.0, 30.0, 0.25), 0.0f32);
+        for row in 0..h {
+            for col in 0..w {
+                let bump = if gaussian(4, col as i64, row as i64) > 2.3 {
+                    0.7
+                } else {
+                    0.0
+                };
+                let slope = 0.03 * col as f64 - 0.02 * row as f64;
+                ras.set(
+                    col,
+                    row,
+                    (1.2 * f.at(col as f64 * 0.25, row as f64 * 0.25) + bump + slope) as f32,
+                );
+            }
+        }
+        let hf = HeightField::new(&ras);
+        let (mut lit, mut total) = (0, 0);
+        for el in [8.0, 20.0, 35.0, 60.0] {
+            for az in [0.0, 45.0, 90.0, 133.0, 180.0, 250.0, 270.0, 301.0, 359.0] {
+                let sun = Sun::new(az, el, 0.25);
+                let shadows = hf.shadows(sun);
+                for row in 0..h {
+                    for col in 0..w {
+                        let want = hf.sunlit(col, row, &sun);
+                        assert_eq!(
+                            shadows.sunlit(col, row),
+                            want,
+                            "az {az} el {el} ({col}, {row})"
+                        );
+                        lit += usize::from(want);
+                        total += 1;
+                    }
+                }
+            }
+        }
+        assert!(lit > total / 10 && lit < total * 19 / 20, "{lit}/{total}");
+    }
+
+    #[test]
     fn flat_ground_faces_the_sun_by_its_elevation() {
         let ras = Raster::filled(4, 4, GeoTransform::new(0.0, 1.0, 0.25), 1.0f32);
         let sun = Sun::new(250.0, 30.0, 0.25);
@@ -625,6 +804,21 @@ mod tests {
                     .all(|(a, b)| a.to_bits() == b.to_bits()),
                 "{w}×{h} σ {sigma}"
             );
+        }
+    }
+
+    #[test]
+    fn exact_div_equals_division() {
+        use crate::synthetic::noise::gaussian;
+        for d in [0.25, 0.5, 1.0, 4.0, 0.3, 3.0, 1e-300, 2f64.powi(-1030)] {
+            let div = ExactDiv::new(d);
+            for i in 0..2000 {
+                let x = gaussian(1, i, 2) * 10f64.powi((i % 40) as i32 - 20);
+                assert_eq!(div.of(x).to_bits(), (x / d).to_bits(), "{x} / {d}");
+            }
+            for x in [0.0, -0.0, 1e308, -1e-310, f64::INFINITY] {
+                assert_eq!(div.of(x).to_bits(), (x / d).to_bits(), "{x} / {d}");
+            }
         }
     }
 
