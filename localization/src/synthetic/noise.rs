@@ -162,9 +162,10 @@ impl ValueFbm {
             let iy = floor_i64(y);
             let v = smoothstep(y - iy as f64);
             let mut cell: Option<(i64, [f64; 4])> = None;
-            for (acc, &x_m) in out.iter_mut().zip(xs) {
-                let x = x_m * f + off;
-                let ix = floor_i64(x);
+            let n = out.len().min(xs.len());
+            let mut i = 0;
+            while i < n {
+                let ix = floor_i64(xs[i] * f + off);
                 let [a, b, c, d] = match cell {
                     Some((cx, corners)) if cx == ix => corners,
                     // The next cell east shares its west corners with this one's east ones.
@@ -184,10 +185,26 @@ impl ValueFbm {
                         corners
                     }
                 };
-                let u = smoothstep(x - ix as f64);
-                let top = a + u * (b - a);
-                let bottom = c + u * (d - c);
-                *acc += amp * (top + v * (bottom - top));
+                // The run of pixels in this cell (`floor(x) == ix` is `lo ≤ x < lo + 1` where
+                // both ends are exact), then its blends in a loop the compiler vectorizes.
+                let lo = ix as f64;
+                let mut end = i + 1;
+                if lo.abs() < 1e15 {
+                    while end < n {
+                        let x = xs[end] * f + off;
+                        if !(x >= lo && x < lo + 1.0) {
+                            break;
+                        }
+                        end += 1;
+                    }
+                }
+                for (acc, &x_m) in out[i..end].iter_mut().zip(&xs[i..end]) {
+                    let u = smoothstep(x_m * f + off - lo);
+                    let top = a + u * (b - a);
+                    let bottom = c + u * (d - c);
+                    *acc += amp * (top + v * (bottom - top));
+                }
+                i = end;
             }
             amp *= 0.5;
             f *= 2.0;
@@ -264,12 +281,20 @@ mod tests {
     #[test]
     fn row_evaluation_matches_pointwise_bit_for_bit() {
         let f = ValueFbm::new(99, 3.0, 4);
-        let xs: Vec<f64> = (0..300).map(|i| -20.0 + (i as f64 + 0.5) * 0.25).collect();
-        let mut out = vec![0.0; xs.len()];
-        for y in [-5.125, 0.0, 3.5, 1e4 + 0.375] {
-            f.row(&xs, y, &mut out);
-            for (x, v) in xs.iter().zip(&out) {
-                assert_eq!(v.to_bits(), f.at(*x, y).to_bits(), "({x}, {y})");
+        let row: Vec<f64> = (0..300).map(|i| -20.0 + (i as f64 + 0.5) * 0.25).collect();
+        // A row of pixels, the same backwards, scattered, and far from the origin.
+        let backwards: Vec<f64> = row.iter().rev().copied().collect();
+        let scattered: Vec<f64> = (0..300)
+            .map(|i| f64::from(i * 37 % 101) * 0.31 - 9.0)
+            .collect();
+        let far: Vec<f64> = row.iter().map(|x| x + 3.0e6).collect();
+        for xs in [row, backwards, scattered, far] {
+            let mut out = vec![0.0; xs.len()];
+            for y in [-5.125, 0.0, 3.5, 1e4 + 0.375] {
+                f.row(&xs, y, &mut out);
+                for (x, v) in xs.iter().zip(&out) {
+                    assert_eq!(v.to_bits(), f.at(*x, y).to_bits(), "({x}, {y})");
+                }
             }
         }
     }

@@ -7,7 +7,7 @@ use rayon::prelude::*;
 
 use super::noise::{CachedValue, gaussian, sub_seed};
 use super::rover_params::RoverImagingParams;
-use super::shading::{HeightField, Sun, bilinear, radiance};
+use super::shading::{ExactDiv, HeightField, Sun, bilinear, radiance};
 use super::{
     ORTHO_RESOLUTION_M_PER_PX, ORTHO_SIZE_PX, ROVER_DEM_BLOCK_PX, SyntheticError, TruthPatch,
     check_param,
@@ -163,9 +163,11 @@ pub fn render_rover(
     let pgeo = patch.height_m.geo;
     let res = hf.resolution_m;
     // Pixel-centre coordinates of a map point on the truth grid.
+    // `pgeo.pixel_of(x, y)`, with its divisions by the pixel size done exactly and faster.
+    let per_px = ExactDiv::new(pgeo.resolution_m_per_px);
     let to_px = |x: f64, y: f64| {
-        let (c, r) = pgeo.pixel_of(x, y);
-        [c - 0.5, r - 0.5]
+        let [ox, oy] = pgeo.origin_m;
+        [per_px.of(x - ox) - 0.5, per_px.of(oy - y) - 0.5]
     };
     let cam = to_px(rover_m[0], rover_m[1]);
     if !hf.contains(cam[0], cam[1]) {
@@ -224,6 +226,8 @@ pub fn render_rover(
     );
     let (rw, rh) = (c1 - c0, r1 - r0);
     let lit_reach_px = (p.max_range_m + RADIANCE_MARGIN_M) / res;
+    let reach2 = lit_reach_px * lit_reach_px;
+    let (reach2_lo, reach2_hi) = (reach2 * (1.0 - 1e-9), reach2 * (1.0 + 1e-9));
     let mut rad = vec![0.0f32; rw * rh];
     rad.par_chunks_mut(rw.max(1))
         .enumerate()
@@ -231,7 +235,17 @@ pub fn render_rover(
             let row = r0 + i;
             for (j, v) in out.iter_mut().enumerate() {
                 let col = c0 + j;
-                if (col as f64 - cam[0]).hypot(row as f64 - cam[1]) > lit_reach_px {
+                let (dc, dr) = (col as f64 - cam[0], row as f64 - cam[1]);
+                // `hypot > reach`, settled by the squares unless within rounding of the edge.
+                let d2 = dc * dc + dr * dr;
+                let outside = if d2 > reach2_hi {
+                    true
+                } else if d2 < reach2_lo {
+                    false
+                } else {
+                    dc.hypot(dr) > lit_reach_px
+                };
+                if outside {
                     continue;
                 }
                 let cos = hf.cos_incidence(col, row, sun.dir);
