@@ -91,7 +91,7 @@ impl std::fmt::Debug for TerrainStatics {
 
 impl TerrainStatics {
     /// The fields of `layers` for an orbital epoch `migration_m` before the rover's
-    /// ([`super::OrbitalParams::ripple_migration_m`]), within [`DEFAULT_BUDGET_BYTES`].
+    /// ([`super::OrbitalParams::ripple_migration_m`]), within `DEFAULT_BUDGET_BYTES`.
     #[must_use]
     pub fn new(layers: Arc<MapLayers>, migration_m: f64) -> Self {
         Self::with_budget(layers, migration_m, DEFAULT_BUDGET_BYTES)
