@@ -484,7 +484,7 @@ pub fn report(r: &SweepResult, scenario: &Scenario, seconds: f64, threads: usize
     };
     let _ = write!(s, "{:<18}", "strategy");
     for k in rates {
-        let _ = write!(s, " {:>17}", head_rate(k));
+        let _ = write!(s, " {:>19}", head_rate(k));
     }
     for f in &figs {
         let _ = write!(s, " {:>19}", f.name());
@@ -501,7 +501,7 @@ pub fn report(r: &SweepResult, scenario: &Scenario, seconds: f64, threads: usize
                     pct(r.interval.hi)
                 )
             });
-            let _ = write!(s, " {cell:>17}");
+            let _ = write!(s, " {cell:>19}");
         }
         for f in &figs {
             let cell = ss.figure(f.name()).map_or("-".into(), |sp| {
