@@ -3,7 +3,7 @@
 use maps::Raster;
 use rayon::prelude::*;
 
-use super::noise::{CachedValue, SplitMix, ValueFbm, gaussian, sub_seed};
+use super::noise::{SplitMix, ValueFbm, gaussian, sub_seed, value_row};
 use super::shading::{ExactDiv, HeightField, Sun, bilinear, gaussian_blur, radiance};
 use super::statics::PatchStatics;
 use super::truth::RippleField;
@@ -309,14 +309,16 @@ pub(crate) fn render_orbital_with(
         let src = linear;
         let per_px = ExactDiv::new(res);
         let mut warped = vec![0.0f32; w * h];
+        // Every row has the same columns: their noise coordinates once.
+        let xs_l: Vec<f64> = (0..w).map(|col| geo.center_of(col, 0).0 / lambda).collect();
         warped.par_chunks_mut(w.max(1)).enumerate().for_each_init(
-            || (CachedValue::new(sx), CachedValue::new(sy)),
+            || (vec![0.0; w], vec![0.0; w]),
             |(noise_x, noise_y), (row, out)| {
                 let y_l = geo.center_of(0, row).1 / lambda;
+                value_row(sx, &xs_l, y_l, noise_x);
+                value_row(sy, &xs_l, y_l, noise_y);
                 for (col, v) in out.iter_mut().enumerate() {
-                    let x_l = geo.center_of(col, row).0 / lambda;
-                    let dx = k * noise_x.at(x_l, y_l);
-                    let dy = k * noise_y.at(x_l, y_l);
+                    let (dx, dy) = (k * noise_x[col], k * noise_y[col]);
                     let (dc, dr) = (per_px.of(dx), per_px.of(dy));
                     *v = bilinear(&src, w, h, col as f64 + dc, row as f64 - dr);
                 }
@@ -331,16 +333,18 @@ pub(crate) fn render_orbital_with(
     let thresholds: Vec<f64> = (1..=255)
         .map(|k| 255.0 * ((f64::from(k) - 0.5) / 255.0).powf(1.0 / p.gamma))
         .collect();
-    let appearance: Vec<u8> = blurred
-        .par_iter()
+    let quantizer = Quantizer::new(thresholds);
+    let mut appearance = vec![0u8; w * h];
+    appearance
+        .par_chunks_mut(w.max(1))
+        .zip(blurred.par_chunks(w.max(1)))
         .enumerate()
-        .map(|(i, &v)| {
-            let (col, row) = ((i % w) as i64, (i / w) as i64);
-            let noisy = f64::from(v) + p.noise_sigma_dn * gaussian(noise_seed, col, row);
-            // At most 255 thresholds lie below, so the count fits a u8.
-            thresholds.partition_point(|&t| t <= noisy) as u8
-        })
-        .collect();
+        .for_each(|(row, (out, vs))| {
+            for (col, (o, &v)) in out.iter_mut().zip(vs).enumerate() {
+                let noise = gaussian(noise_seed, col as i64, row as i64);
+                *o = quantizer.level(f64::from(v) + p.noise_sigma_dn * noise);
+            }
+        });
 
     let block = ((ORBITAL_DEM_RESOLUTION_M_PER_PX / hf.resolution_m).round() as usize).max(1);
     let (dw, dh) = (w / block, h / block);
@@ -373,6 +377,45 @@ pub(crate) fn render_orbital_with(
             data: dem,
         },
     })
+}
+
+/// The 8-bit level of a value: how many of 255 ascending thresholds lie at or below it
+/// (`thresholds.partition_point(|&t| t <= v)`), found from a table of 1/4 DN buckets and a step
+/// or two instead of a binary search.
+struct Quantizer {
+    thresholds: Vec<f64>,
+    /// `table[b]` = thresholds at or below `b / 4` (`b / 4` is exact).
+    table: Vec<u8>,
+}
+
+impl Quantizer {
+    const PER_DN: f64 = 4.0;
+
+    fn new(thresholds: Vec<f64>) -> Self {
+        debug_assert!(thresholds.len() <= 255 && thresholds.is_sorted());
+        let top = thresholds.last().copied().unwrap_or(0.0).clamp(0.0, 1e6);
+        let buckets = (top * Self::PER_DN) as usize + 2;
+        let table = (0..buckets)
+            .map(|b| thresholds.partition_point(|&t| t <= b as f64 / Self::PER_DN) as u8)
+            .collect();
+        Self { thresholds, table }
+    }
+
+    #[inline]
+    fn level(&self, v: f64) -> u8 {
+        // Bucket `⌊4v⌋` (the last beyond the table) counts only thresholds at or below `v`; the
+        // steps add the rest. Below 0 (and NaN) start from none.
+        let mut n = if v >= 0.0 {
+            usize::from(self.table[((v * Self::PER_DN) as usize).min(self.table.len() - 1)])
+        } else {
+            0
+        };
+        while self.thresholds.get(n).is_some_and(|&t| t <= v) {
+            n += 1;
+        }
+        // At most 255 thresholds lie below, so the count fits a u8.
+        n as u8
+    }
 }
 
 /// The truth heights with the ripples moved back by `migration_m` (the orbital epoch), or
@@ -481,4 +524,40 @@ fn dust_devil_tracks(patch: &TruthPatch, p: &OrbitalParams, seed: u64) -> Vec<Tr
             }
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quantizer_equals_the_binary_search() {
+        for gamma in [0.8, 1.0, 2.2, 0.3] {
+            let thresholds: Vec<f64> = (1..=255)
+                .map(|k| 255.0 * ((f64::from(k) - 0.5) / 255.0).powf(1.0 / gamma))
+                .collect();
+            let q = Quantizer::new(thresholds.clone());
+            let mut values: Vec<f64> = (-400..300_000).map(|i| f64::from(i) * 0.001).collect();
+            values.extend(
+                thresholds
+                    .iter()
+                    .flat_map(|&t| [t, t.next_down(), t.next_up()]),
+            );
+            values.extend([
+                f64::NAN,
+                -1e300,
+                1e300,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                -0.0,
+            ]);
+            for v in values {
+                assert_eq!(
+                    usize::from(q.level(v)),
+                    thresholds.partition_point(|&t| t <= v),
+                    "γ {gamma}, {v}"
+                );
+            }
+        }
+    }
 }
