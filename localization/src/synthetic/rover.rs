@@ -116,11 +116,22 @@ fn normal(rng: &mut ChaCha8Rng) -> f64 {
     (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
 }
 
+/// `a.rem_euclid(360.0)`, without the `fmod` call for `|a| < 360` (the per-pixel case: an
+/// azimuth or a difference of two), where `a % 360 = a` exactly.
+#[inline]
+fn rem_euclid_360(a: f64) -> f64 {
+    if a.abs() < 360.0 {
+        if a < 0.0 { a + 360.0 } else { a }
+    } else {
+        a.rem_euclid(360.0)
+    }
+}
+
 /// The wedge whose centre is nearest to `azimuth_deg` among those containing it.
 fn wedge_of(azimuth_deg: f64, wedges: &[WedgeResponse], width_deg: f64) -> Option<usize> {
     let mut best: Option<(usize, f64)> = None;
     for (k, w) in wedges.iter().enumerate() {
-        let rel = (azimuth_deg - w.start_azimuth_deg).rem_euclid(360.0);
+        let rel = rem_euclid_360(azimuth_deg - w.start_azimuth_deg);
         let off_centre = (rel - 0.5 * width_deg).abs();
         if rel < width_deg && best.is_none_or(|(_, d)| off_centre < d) {
             best = Some((k, off_centre));
@@ -301,7 +312,7 @@ pub fn render_rover(
                     if range_m < p.min_range_m || range_m > p.max_range_m {
                         continue;
                     }
-                    let azimuth_deg = dx.atan2(dy).to_degrees().rem_euclid(360.0);
+                    let azimuth_deg = rem_euclid_360(dx.atan2(dy).to_degrees());
                     let Some(k) = wedge_of(azimuth_deg, &wedges, p.wedge_width_deg) else {
                         continue;
                     };
@@ -311,7 +322,12 @@ pub fn render_rover(
                     let blotch = dropout_noise
                         .at(x / DROPOUT_WAVELENGTH_M, y / DROPOUT_WAVELENGTH_M)
                         / VALUE_NOISE_SD;
-                    if dropout > 0.0 && 1.0 / (1.0 + (-1.702 * blotch).exp()) < dropout {
+                    // The logistic is at least ½ where `blotch ≥ 0` (1 / (1 + e) with e ≤ 1), so
+                    // a rate of at most ½ needs no exponential there.
+                    let dropped = dropout > 0.0
+                        && !(blotch >= 0.0 && dropout <= 0.5)
+                        && 1.0 / (1.0 + (-1.702 * blotch).exp()) < dropout;
+                    if dropped {
                         continue;
                     }
                     let target = to_px(x, y);
@@ -446,6 +462,32 @@ fn block_mean_dem(
 #[allow(clippy::unwrap_used)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn rem_euclid_360_equals_rem_euclid() {
+        let mut values: Vec<f64> = (-80_000..80_000).map(|i| f64::from(i) * 0.00913).collect();
+        for v in [
+            0.0,
+            -0.0,
+            360.0,
+            -360.0,
+            720.5,
+            -1e300,
+            1e-300,
+            -1e-300,
+            f64::NAN,
+        ] {
+            values.extend([v, v.next_up(), v.next_down()]);
+        }
+        values.extend([f64::INFINITY, f64::NEG_INFINITY]);
+        for v in values {
+            assert_eq!(
+                rem_euclid_360(v).to_bits(),
+                v.rem_euclid(360.0).to_bits(),
+                "{v}"
+            );
+        }
+    }
 
     #[test]
     fn wedges_pick_the_nearest_centre_and_leave_gaps() {
