@@ -20,12 +20,18 @@
 //! [`OnboardSettings::min_search_radius_m`]..[`OnboardSettings::max_search_radius_m`]
 //! (30 m by default, up to 100 m: paper 000 §4).
 //!
+//! Many runs on one map (a study's runs and strategies) share an [`OnboardCache`] through
+//! [`run_onboard_with`]: the map's seed-independent terrain fields and the most recent renders,
+//! which give the same results as rendering again.
+//!
 //! ## Timing
 //! The HBS run time in the sol log is *not* this machine's wall clock (that would make outputs
 //! differ run to run). It is [`OnboardSettings::hbs_slowdown`] × [`MEASURED_FLIGHT_SIZE_RUN_S`]
 //! (one flight-size localization on the development machine, measured by `cargo bench --bench
 //! localize`) × the run's work relative to flight size (search-window area). Link time is the
 //! real byte count of the input and result files at [`HbsParams::link_bytes_per_s`].
+
+use std::sync::Arc;
 
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -37,8 +43,13 @@ use crate::hbs::{ActivityLog, HbsFile, HbsParams, LossReason, run_activity};
 use crate::matcher::{MatchParams, MatchResult, Method, OrbitalMap, RoverImages, localize};
 use crate::synthetic::{
     ORTHO_RESOLUTION_M_PER_PX, ORTHO_SIZE_PX, OrbitalParams, RoverImagingParams, SyntheticError,
-    TerrainStatics, patch_grid, render_orbital_with, render_rover, truth_patch_on,
+    patch_grid, render_orbital_with, render_rover, truth_patch_on,
 };
+
+mod cache;
+
+use cache::Rendered;
+pub use cache::{DEFAULT_RECENT_RENDERS, OnboardCache};
 
 /// One localization at flight size (240² orthomosaic, ±30 m at 25 cm, DEM, sub-pixel) on the
 /// development machine, seconds: `cargo bench --bench localize` group B2, 1 thread (see
@@ -378,13 +389,12 @@ pub fn run_onboard(layers: &MapLayers, req: &OnboardRequest, s: &OnboardSettings
     run_onboard_with(layers, None, req, s)
 }
 
-/// [`run_onboard`] with the seed-independent terrain fields of `layers` taken from `statics`
-/// when it serves them ([`TerrainStatics::serves`]): the same run, faster when many runs share
-/// one map.
+/// [`run_onboard`] sharing `cache` with the other runs on `layers` (if it is that map's:
+/// [`OnboardCache::serves`]): the same run, faster when many runs share one map.
 #[must_use]
 pub fn run_onboard_with(
     layers: &MapLayers,
-    statics: Option<&TerrainStatics>,
+    cache: Option<&OnboardCache>,
     req: &OnboardRequest,
     s: &OnboardSettings,
 ) -> OnboardRun {
@@ -418,21 +428,33 @@ pub fn run_onboard_with(
     let half_size_m = radius_m.max(offset) + half_ortho_m + PATCH_MARGIN_M;
     let mut sol_rng = ChaCha8Rng::seed_from_u64(req.sol_seed);
     let rover_seed = rand::RngExt::random::<u64>(&mut sol_rng);
-    let statics = statics.filter(|t| t.serves(layers, s.orbital.ripple_migration_m));
-    let rendered = patch_grid(layers, req.prior_m, half_size_m).and_then(|(geo, n)| {
-        let fields = statics.and_then(|t| t.patch(geo, n));
-        let p = truth_patch_on(layers, geo, n, req.truth_seed, fields.as_ref());
-        let orbital = render_orbital_with(&p, &s.orbital, req.orbital_seed, fields.as_ref())?;
-        let rover = render_rover(&p, req.truth_m, &s.rover, rover_seed)?;
-        Ok((orbital, rover))
+    let rendered = match cache.filter(|c| c.serves(layers)) {
+        Some(c) => c.render(
+            layers,
+            req.prior_m,
+            half_size_m,
+            req.truth_seed,
+            req.orbital_seed,
+            &s.orbital,
+        ),
+        None => patch_grid(layers, req.prior_m, half_size_m).and_then(|(geo, n)| {
+            let patch = truth_patch_on(layers, geo, n, req.truth_seed, None);
+            let orbital = render_orbital_with(&patch, &s.orbital, req.orbital_seed, None)?;
+            Ok(Arc::new(Rendered { patch, orbital }))
+        }),
+    }
+    .and_then(|r| {
+        let rover = render_rover(&r.patch, req.truth_m, &s.rover, rover_seed)?;
+        Ok((r, rover))
     });
-    let (orbital, rover) = match rendered {
+    let (rendered, rover) = match rendered {
         Ok(v) => v,
         Err(e) => {
             run.lost_reason = Some(LostReason::NoImagery(e));
             return run;
         }
     };
+    let orbital = &rendered.orbital;
     let geos = [
         rover.ortho.geo,
         rover.dem.geo,

@@ -19,7 +19,8 @@
 //!
 //! Many runs on one map share [`TerrainStatics`]: the seed-independent parts of the truth (map
 //! DEM height, interdune depth, the ripples at both epochs), built once per 16 m tile, which
-//! [`crate::onboard::run_onboard_with`] takes instead of recomputing them (the same bits).
+//! [`crate::onboard::run_onboard_with`] takes (through [`crate::onboard::OnboardCache`]) instead
+//! of recomputing them (the same bits).
 //!
 //! ## Error sources (why census does not localize these scenes to millimetres)
 //!

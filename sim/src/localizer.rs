@@ -23,8 +23,7 @@ use std::sync::Arc;
 
 use crate::outcome::RejectionReason;
 use localization::matcher::Method;
-use localization::onboard::OnboardSettings;
-use localization::synthetic::TerrainStatics;
+use localization::onboard::{OnboardCache, OnboardSettings};
 use maps::MapLayers;
 use rand::RngExt;
 use rand_chacha::ChaCha8Rng;
@@ -87,11 +86,11 @@ pub struct ImageryLocalizer {
     pub layers: Arc<MapLayers>,
     /// Matcher, imaging and co-processor settings.
     pub settings: OnboardSettings,
-    /// The seed-independent terrain fields of `layers`, filled by the runs as they render and
-    /// shared by every run of the scenario (and every thread). Used only while they are the
-    /// fields of `layers` at `settings.orbital` ([`TerrainStatics::serves`]); the imagery is
-    /// the same with or without them.
-    pub terrain_statics: Arc<TerrainStatics>,
+    /// What the localizations on `layers` share (terrain fields, recent renders), filled by
+    /// the runs as they go and shared by every run of the scenario (and every thread). Used only
+    /// while it is the cache of `layers` ([`OnboardCache::serves`]); the results are the same
+    /// with or without it.
+    pub cache: Arc<OnboardCache>,
 }
 
 impl ImageryLocalizer {
@@ -100,14 +99,11 @@ impl ImageryLocalizer {
     pub fn new(layers: Arc<MapLayers>, method: Method) -> Self {
         let mut settings = OnboardSettings::default();
         settings.matcher.method = method;
-        let terrain_statics = Arc::new(TerrainStatics::new(
-            Arc::clone(&layers),
-            settings.orbital.ripple_migration_m,
-        ));
+        let cache = Arc::new(OnboardCache::new(Arc::clone(&layers), &settings.orbital));
         Self {
             layers,
             settings,
-            terrain_statics,
+            cache,
         }
     }
 }

@@ -112,12 +112,7 @@ fn imagery_localization(
         orbital_seed: stream_seed(c.seed, Purpose::WorldOrbital, 0).seed,
         sol_seed,
     };
-    let run = run_onboard_with(
-        &loc.layers,
-        Some(&loc.terrain_statics),
-        &request,
-        &loc.settings,
-    );
+    let run = run_onboard_with(&loc.layers, Some(&loc.cache), &request, &loc.settings);
     let at = |t_s: f64| start.after_s(t_s).lmst();
     let mut event = LocalizationEvent {
         kind: LocalizationKind::Onboard,

@@ -130,9 +130,13 @@ impl TerrainStatics {
     /// Whether these are the fields of `layers` (the same allocation) at `migration_m`.
     #[must_use]
     pub fn serves(&self, layers: &MapLayers, migration_m: f64) -> bool {
-        self.exact
-            && std::ptr::eq(Arc::as_ptr(&self.layers), layers)
-            && self.migration_m.to_bits() == migration_m.to_bits()
+        self.exact && self.is_of(layers) && self.migration_m.to_bits() == migration_m.to_bits()
+    }
+
+    /// Whether these are fields of `layers` (the same allocation), at whatever migration.
+    #[must_use]
+    pub fn is_of(&self, layers: &MapLayers) -> bool {
+        std::ptr::eq(Arc::as_ptr(&self.layers), layers)
     }
 
     /// Bytes of tiles built so far.
