@@ -438,7 +438,7 @@ pub fn run_onboard_with(
             &s.orbital,
         ),
         None => patch_grid(layers, req.prior_m, half_size_m).and_then(|(geo, n)| {
-            let patch = truth_patch_on(layers, geo, n, req.truth_seed, None);
+            let patch = truth_patch_on(layers, geo, n, req.truth_seed, None, None);
             let orbital = render_orbital_with(&patch, &s.orbital, req.orbital_seed, None)?;
             Ok(Arc::new(Rendered { patch, orbital }))
         }),

@@ -23,7 +23,10 @@ pub const DEFAULT_RECENT_RENDERS: usize = 8;
 ///   study run share the world's seeds and often localize from estimates that round to the same
 ///   patch grid (within a metre of each other after the same drive): the second takes the first
 ///   one's render instead of making it again. A render is a pure function of its key (seeds,
-///   grid, orbital settings), so a reused one is the very same result.
+///   grid, orbital settings), so a reused one is the very same result. When the grids differ
+///   (by a metre or two), the nearest recent truth patch of the same world lends the pixels it
+///   covers (each is a pure function of seed and position) and only the strips it misses are
+///   computed; the orbital products, which depend on the grid, are rendered again.
 pub struct OnboardCache {
     statics: TerrainStatics,
     /// Renders, most recent first, at most `capacity`.
@@ -134,7 +137,17 @@ impl OnboardCache {
             .serves(layers, orbital.ripple_migration_m)
             .then_some(&self.statics);
         let fields = statics.and_then(|t| t.patch(geo, n));
-        let patch = truth_patch_on(layers, geo, n, truth_seed, fields.as_ref());
+        // A recent patch of the same world lends the pixels it covers, when coordinates on
+        // this map's lattice are exact (where the terrain fields are served).
+        let donor = statics.and_then(|_| self.donor(truth_seed, geo));
+        let patch = truth_patch_on(
+            layers,
+            geo,
+            n,
+            truth_seed,
+            fields.as_ref(),
+            donor.as_ref().map(|d| &d.patch),
+        );
         let orbital = render_orbital_with(&patch, orbital, orbital_seed, fields.as_ref())?;
         let rendered = Arc::new(Rendered { patch, orbital });
         self.keep(key, Arc::clone(&rendered));
@@ -148,6 +161,22 @@ impl OnboardCache {
         let hit = Arc::clone(&entry.1);
         recent.push_front(entry);
         Some(hit)
+    }
+
+    /// The recent render of the world `truth_seed` whose grid corner is nearest to `geo`'s.
+    fn donor(&self, truth_seed: u64, geo: GeoTransform) -> Option<Arc<Rendered>> {
+        let recent = self.recent.lock().unwrap_or_else(PoisonError::into_inner);
+        let distance = |r: &Rendered| {
+            let o = r.patch.height_m.geo.origin_m;
+            (o[0] - geo.origin_m[0])
+                .abs()
+                .max((o[1] - geo.origin_m[1]).abs())
+        };
+        recent
+            .iter()
+            .filter(|(k, _)| k.truth_seed == truth_seed)
+            .min_by(|a, b| distance(&a.1).total_cmp(&distance(&b.1)))
+            .map(|(_, r)| Arc::clone(r))
     }
 
     fn keep(&self, key: RenderKey, rendered: Arc<Rendered>) {

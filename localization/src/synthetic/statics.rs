@@ -356,7 +356,7 @@ mod tests {
             let seed = 40 + k as u64;
             let (geo, n) = patch_grid(&layers, center, half).unwrap();
             let fields = statics.patch(geo, n).unwrap();
-            let with = truth_patch_on(&layers, geo, n, seed, Some(&fields));
+            let with = truth_patch_on(&layers, geo, n, seed, Some(&fields), None);
             let without = truth_patch(&layers, center, half, seed).unwrap();
             assert!(without.sand.data.iter().any(|&s| s > 0.0));
             for (a, b) in [
@@ -379,6 +379,48 @@ mod tests {
             );
         }
         assert!(statics.used_bytes() > 0);
+    }
+
+    #[test]
+    fn donor_patches_lend_their_pixels_exactly() {
+        let layers = Arc::new(layers(0.0));
+        let statics = TerrainStatics::new(Arc::clone(&layers), 0.75);
+        let seed = 9;
+        let (donor_center, half) = ([60.0, 60.0], 18.0);
+        let donor = truth_patch(&layers, donor_center, half, seed).unwrap();
+        // Shifted by whole metres and fractions of one, in every direction, partly or not
+        // at all overlapping, other sizes; with and without the terrain fields.
+        for (dx, dy, h) in [
+            (0.0, 0.0, half),
+            (0.6, -0.3, half),
+            (3.2, 1.0, half),
+            (-7.0, 4.4, half),
+            (-2.0, -11.0, 10.0),
+            (12.0, 5.0, 25.0),
+            (40.0, 0.0, half),
+        ] {
+            let center = [donor_center[0] + dx, donor_center[1] + dy];
+            let (geo, n) = patch_grid(&layers, center, h).unwrap();
+            let want = truth_patch(&layers, center, h, seed).unwrap();
+            let fields = statics.patch(geo, n).unwrap();
+            for fields in [None, Some(&fields)] {
+                let got = truth_patch_on(&layers, geo, n, seed, fields, Some(&donor));
+                for (a, b) in [
+                    (&got.height_m, &want.height_m),
+                    (&got.albedo, &want.albedo),
+                    (&got.sand, &want.sand),
+                ] {
+                    assert_eq!(a.geo, b.geo);
+                    assert!(
+                        a.data
+                            .iter()
+                            .zip(&b.data)
+                            .all(|(x, y)| x.to_bits() == y.to_bits()),
+                        "shift ({dx}, {dy}), half {h}"
+                    );
+                }
+            }
+        }
     }
 
     #[test]

@@ -585,7 +585,7 @@ pub fn truth_patch(
     seed: u64,
 ) -> Result<TruthPatch, SyntheticError> {
     let (geo, n) = patch_grid(layers, center_m, half_size_m)?;
-    Ok(truth_patch_on(layers, geo, n, seed, None))
+    Ok(truth_patch_on(layers, geo, n, seed, None, None))
 }
 
 /// The grid of [`truth_patch`]: its transform and its side, pixels.
@@ -646,14 +646,21 @@ pub(crate) fn patch_grid(
 /// The truth patch of [`truth_patch`] on its grid (`geo`, `n`: see [`patch_grid`]), with the
 /// seed-independent fields taken from `statics` when given: the same values, computed once per
 /// map (see [`super::statics`]).
+///
+/// `donor`, when given, is a patch of the same map and `seed` on the same pixel lattice (from
+/// [`truth_patch`] or this function): every pixel is a pure function of (`seed`, map position),
+/// and with lattice coordinates exact (the caller's guarantee, as for `statics`) the same bits,
+/// so the pixels it covers are copied and only the rest is computed.
 pub(crate) fn truth_patch_on(
     layers: &MapLayers,
     geo: GeoTransform,
     n: usize,
     seed: u64,
     statics: Option<&PatchStatics<'_>>,
+    donor: Option<&TruthPatch>,
 ) -> TruthPatch {
     let statics = statics.filter(|s| s.n() == n);
+    let overlap = donor.and_then(|d| Overlap::of(d, geo, n));
     let detail = ValueFbm::new(sub_seed(seed, SALT_DETAIL), DETAIL_WAVELENGTH_M, 4);
     let texture = ValueFbm::new(sub_seed(seed, SALT_TEXTURE), TEXTURE_WAVELENGTH_M, 3);
     let grain_seed = sub_seed(seed, SALT_GRAIN);
@@ -676,62 +683,95 @@ pub(crate) fn truth_patch_on(
             },
             |((ripple, cover), (detail_row, texture_row), (ground_row, depth_row, ripple_row)),
              (row, ((h_row, a_row), s_row))| {
+                // The columns the donor covers on this row, copied; the rest computed.
+                let copied = match (&overlap, donor) {
+                    (Some(o), Some(d)) if o.rows.contains(&row) => {
+                        let cols = o.cols.clone();
+                        // Donor pixel (row + dj, col + di), both inside the donor here.
+                        let start = (row as isize + o.dj) as usize * d.height_m.width;
+                        let (c0, c1) = (
+                            (cols.start as isize + o.di) as usize,
+                            (cols.end as isize + o.di) as usize,
+                        );
+                        let take = |dst: &mut [f32], data: &[f32]| {
+                            dst[cols.clone()].copy_from_slice(&data[start + c0..start + c1]);
+                        };
+                        take(h_row, &d.height_m.data);
+                        take(a_row, &d.albedo.data);
+                        take(s_row, &d.sand.data);
+                        cols
+                    }
+                    _ => 0..0,
+                };
                 let y = geo.center_of(0, row).1;
-                detail.row(&xs, y, detail_row);
-                texture.row(&xs, y, texture_row);
                 if let Some(st) = statics {
                     st.truth_row(row, ground_row, depth_row, ripple_row);
                 }
-                for (col, ((h, a), sd)) in h_row
-                    .iter_mut()
-                    .zip(a_row.iter_mut())
-                    .zip(s_row.iter_mut())
-                    .enumerate()
-                {
-                    let x = xs[col];
-                    // Pixel centres lie inside the DEM (checked above); the fallback is never used.
-                    let (ground, depth) = match statics {
-                        Some(_) => (f64::from(ground_row[col]), Some(depth_row[col])),
-                        None => {
-                            let g = layers.dem.sample_bilinear(x, y).unwrap_or(0.0);
-                            (f64::from(g), None)
-                        }
-                    };
-                    let look = ClassLook::blended(layers, cover, x, y, ground, depth);
-                    let ripples = if look.sand > 0.0 {
-                        match statics {
-                            Some(_) => look.sand * ripple_row[col],
+                for span in [0..copied.start, copied.end.max(copied.start)..n] {
+                    if span.is_empty() {
+                        continue;
+                    }
+                    detail.row(&xs[span.clone()], y, &mut detail_row[span.clone()]);
+                    texture.row(&xs[span.clone()], y, &mut texture_row[span.clone()]);
+                    for col in span {
+                        let x = xs[col];
+                        // Pixel centres lie inside the DEM (checked above); the fallback is never
+                        // used.
+                        let (ground, depth) = match statics {
+                            Some(_) => (f64::from(ground_row[col]), Some(depth_row[col])),
                             None => {
-                                let weights = ripple.weights(x, y);
-                                look.sand * ripple.height_m(x, y, 0.0, &weights)
+                                let g = layers.dem.sample_bilinear(x, y).unwrap_or(0.0);
+                                (f64::from(g), None)
                             }
-                        }
-                    } else {
-                        0.0
-                    };
-                    *h = (ground + look.detail_m * detail_row[col] + ripples) as f32;
-                    *sd = look.sand as f32;
-                    // World pixel indices, so the grain does not depend on where the patch starts.
-                    let (gx, gy) = (
-                        floor_i64(x / TRUTH_RESOLUTION_M_PER_PX),
-                        floor_i64(y / TRUTH_RESOLUTION_M_PER_PX),
-                    );
-                    let grain = 0.35 * gaussian(grain_seed, gx, gy).clamp(-3.0, 3.0);
-                    let mottle = texture_row[col] + grain;
-                    *a = (look.albedo * (1.0 + look.texture * mottle)).clamp(0.02, 0.6) as f32;
+                        };
+                        let look = ClassLook::blended(layers, cover, x, y, ground, depth);
+                        let ripples = if look.sand > 0.0 {
+                            match statics {
+                                Some(_) => look.sand * ripple_row[col],
+                                None => {
+                                    let weights = ripple.weights(x, y);
+                                    look.sand * ripple.height_m(x, y, 0.0, &weights)
+                                }
+                            }
+                        } else {
+                            0.0
+                        };
+                        h_row[col] = (ground + look.detail_m * detail_row[col] + ripples) as f32;
+                        s_row[col] = look.sand as f32;
+                        // World pixel indices, so the grain does not depend on where the patch
+                        // starts.
+                        let (gx, gy) = (
+                            floor_i64(x / TRUTH_RESOLUTION_M_PER_PX),
+                            floor_i64(y / TRUTH_RESOLUTION_M_PER_PX),
+                        );
+                        let grain = 0.35 * gaussian(grain_seed, gx, gy).clamp(-3.0, 3.0);
+                        let mottle = texture_row[col] + grain;
+                        a_row[col] =
+                            (look.albedo * (1.0 + look.texture * mottle)).clamp(0.02, 0.6) as f32;
+                    }
                 }
             },
         );
 
-    stamp_rocks(
-        sub_seed(seed, SALT_ROCKS),
-        cover_seed,
-        layers,
-        geo,
-        n,
-        &mut height,
-        &mut albedo,
-    );
+    // Rocks on the computed pixels only (the copied ones carry theirs).
+    let rocks_seed = sub_seed(seed, SALT_ROCKS);
+    let full = [0..n, 0..n];
+    let rects = match &overlap {
+        Some(o) => o.rest(n),
+        None => vec![full],
+    };
+    for [rows, cols] in rects {
+        stamp_rocks(
+            rocks_seed,
+            cover_seed,
+            layers,
+            geo,
+            n,
+            [rows, cols],
+            &mut height,
+            &mut albedo,
+        );
+    }
 
     TruthPatch {
         height_m: Raster {
@@ -755,24 +795,86 @@ pub(crate) fn truth_patch_on(
     }
 }
 
-/// Adds the rocks of every cell that can reach the `n × n` grid at `geo`. Where rocks overlap
-/// the tallest wins, so the result does not depend on the order they are stamped in.
+/// Where a donor patch covers a new patch grid: the new grid's rows and columns it covers, and
+/// the donor's pixel offset (`donor (row + dj, col + di)` is the new `(row, col)`).
+#[derive(Clone, Debug, PartialEq)]
+struct Overlap {
+    rows: std::ops::Range<usize>,
+    cols: std::ops::Range<usize>,
+    di: isize,
+    dj: isize,
+}
+
+impl Overlap {
+    /// The overlap of `donor` with the `n × n` grid `geo`, or `None` if it is not on the same
+    /// pixel lattice (an exact whole number of pixels away) or covers nothing.
+    fn of(donor: &TruthPatch, geo: GeoTransform, n: usize) -> Option<Self> {
+        let dg = donor.height_m.geo;
+        let res = geo.resolution_m_per_px;
+        if dg.resolution_m_per_px.to_bits() != res.to_bits() {
+            return None;
+        }
+        let (fi, fj) = (
+            (geo.origin_m[0] - dg.origin_m[0]) / res,
+            (dg.origin_m[1] - geo.origin_m[1]) / res,
+        );
+        if !(fi.fract() == 0.0 && fj.fract() == 0.0 && fi.abs() < 1e9 && fj.abs() < 1e9) {
+            return None;
+        }
+        let (di, dj) = (fi as isize, fj as isize);
+        let (dw, dh) = (
+            donor.height_m.width as isize,
+            donor.height_m.height as isize,
+        );
+        let span = |d: isize, len: isize| {
+            let lo = (-d).clamp(0, n as isize) as usize;
+            let hi = (len - d).clamp(0, n as isize) as usize;
+            lo..hi.max(lo)
+        };
+        let (rows, cols) = (span(dj, dh), span(di, dw));
+        (!rows.is_empty() && !cols.is_empty()).then_some(Self { rows, cols, di, dj })
+    }
+
+    /// The rectangles `[rows, cols]` of the `n × n` grid outside the overlap.
+    fn rest(&self, n: usize) -> Vec<[std::ops::Range<usize>; 2]> {
+        let mut out = Vec::new();
+        for cols in [0..self.cols.start, self.cols.end..n] {
+            if !cols.is_empty() {
+                out.push([0..n, cols]);
+            }
+        }
+        for rows in [0..self.rows.start, self.rows.end..n] {
+            if !rows.is_empty() {
+                out.push([rows, self.cols.clone()]);
+            }
+        }
+        out
+    }
+}
+
+/// Adds, on the pixels `rows × cols` of the `n × n` grid at `geo`, the rocks of every cell that
+/// can reach them. Where rocks overlap the tallest wins, so the result does not depend on the
+/// order they are stamped in, nor on which other pixels are stamped with them.
+#[allow(clippy::too_many_arguments)]
 fn stamp_rocks(
     seed: u64,
     cover_seed: u64,
     layers: &MapLayers,
     geo: GeoTransform,
     n: usize,
+    [rows, cols]: [std::ops::Range<usize>; 2],
     height: &mut [f32],
     albedo: &mut [f32],
 ) {
     let res = geo.resolution_m_per_px;
     let [ox, oy] = geo.origin_m;
-    let side_m = n as f64 * res;
     let reach_m = 0.5 * ROCK_DIAMETER_M.1;
     let cell = |v: f64| floor_i64(v / ROCK_CELL_M);
-    let (ix0, ix1) = (cell(ox - reach_m), cell(ox + side_m + reach_m));
-    let (iy0, iy1) = (cell(oy - side_m - reach_m), cell(oy + reach_m));
+    // The rectangle's extent, as the whole grid's is `[ox, ox + n·res] × [oy − n·res, oy]`.
+    let (x0, x1) = (ox + cols.start as f64 * res, ox + cols.end as f64 * res);
+    let (y1, y0) = (oy - rows.start as f64 * res, oy - rows.end as f64 * res);
+    let (ix0, ix1) = (cell(x0 - reach_m), cell(x1 + reach_m));
+    let (iy0, iy1) = (cell(y0 - reach_m), cell(y1 + reach_m));
     let mut cover = SandCoverField::new(cover_seed);
     let mut rocks = Vec::new();
     for iy in iy0..=iy1 {
@@ -780,8 +882,9 @@ fn stamp_rocks(
             rocks_in_cell(seed, &mut cover, ix, iy, layers, &mut rocks);
         }
     }
-    let mut rock_h = vec![0.0f32; n * n];
-    let mut rock_albedo = vec![0.0f32; n * n];
+    let (rw, rh) = (cols.len(), rows.len());
+    let mut rock_h = vec![0.0f32; rw * rh];
+    let mut rock_albedo = vec![0.0f32; rw * rh];
     for rock in &rocks {
         let [rx, ry] = rock.center_m;
         let a = rock.semi_axes_m[0];
@@ -789,8 +892,8 @@ fn stamp_rocks(
         let (c0, c1) = (px((rx - a - ox) / res), px((rx + a - ox) / res + 1.0));
         let (r0, r1) = (px((oy - ry - a) / res), px((oy - ry + a) / res + 1.0));
         let (cos, sin) = (rock.angle_rad.cos(), rock.angle_rad.sin());
-        for row in r0..r1 {
-            for col in c0..c1 {
+        for row in r0.max(rows.start)..r1.min(rows.end) {
+            for col in c0.max(cols.start)..c1.min(cols.end) {
                 let (x, y) = geo.center_of(col, row);
                 let (dx, dy) = (x - rx, y - ry);
                 let u = (dx * cos + dy * sin) / rock.semi_axes_m[0];
@@ -800,7 +903,7 @@ fn stamp_rocks(
                     continue;
                 }
                 let z = (rock.height_m * q.sqrt()) as f32;
-                let i = row * n + col;
+                let i = (row - rows.start) * rw + (col - cols.start);
                 if z > rock_h[i] || (z == rock_h[i] && (rock.albedo as f32) > rock_albedo[i]) {
                     rock_h[i] = z;
                     rock_albedo[i] = rock.albedo as f32;
@@ -808,11 +911,14 @@ fn stamp_rocks(
             }
         }
     }
-    for i in 0..n * n {
-        if rock_h[i] > 0.0 {
-            height[i] += rock_h[i];
-            // Keep a little of the ground's texture on the rock surface.
-            albedo[i] = 0.85 * rock_albedo[i] + 0.15 * albedo[i];
+    for (r, row) in rows.enumerate() {
+        for (c, col) in cols.clone().enumerate() {
+            let (k, i) = (r * rw + c, row * n + col);
+            if rock_h[k] > 0.0 {
+                height[i] += rock_h[k];
+                // Keep a little of the ground's texture on the rock surface.
+                albedo[i] = 0.85 * rock_albedo[k] + 0.15 * albedo[i];
+            }
         }
     }
 }
