@@ -276,27 +276,31 @@ pub(crate) fn render_orbital_with(
     );
     let xs: Vec<f64> = (0..w).map(|col| geo.center_of(col, 0).0).collect();
     let mut linear = vec![0.0f32; w * h];
-    linear
-        .par_chunks_mut(w.max(1))
-        .enumerate()
-        .for_each(|(row, out)| {
+    linear.par_chunks_mut(w.max(1)).enumerate().for_each_init(
+        || (vec![0.0; w], vec![0.0; w]),
+        |(change_row, cos_row), (row, out)| {
             let y = geo.center_of(0, row).1;
-            let mut change_row = vec![0.0; w];
+            change_row.fill(0.0);
             if p.albedo_change_sigma > 0.0 {
-                change.row(&xs, y, &mut change_row);
+                change.row(&xs, y, change_row);
             }
+            // Whole rows of the albedo change's factor and of the incidence (vectorized).
+            for c in change_row.iter_mut() {
+                *c = 1.0 + p.albedo_change_sigma * *c / FBM_SD;
+            }
+            hf.cos_incidence_row(row, sun.dir, cos_row);
             for (col, v) in out.iter_mut().enumerate() {
-                let cos = hf.cos_incidence(col, row, sun.dir);
+                let cos = cos_row[col];
                 let lit = cos > 0.0 && shadows.sunlit(col, row);
                 let x = xs[col];
                 let darkening: f64 = tracks.iter().map(|t| t.darkening_at(x, y)).sum();
-                let factor = (1.0 + p.albedo_change_sigma * change_row[col] / FBM_SD)
-                    * (1.0 - darkening.min(0.9));
+                let factor = change_row[col] * (1.0 - darkening.min(0.9));
                 let albedo = (f64::from(patch.albedo.data[row * w + col]) * factor.max(0.0))
                     .clamp(0.0, 1.0) as f32;
                 *v = (scale * radiance(albedo, cos, lit, p.ambient)) as f32;
             }
-        });
+        },
+    );
     // Orthorectification / co-registration error: pixel p shows the ground at p + d(p), so a
     // feature at g appears near g − d(g).
     if p.ortho_displacement_sigma_m > 0.0 {
