@@ -224,7 +224,7 @@ def check_rows(problems, runs, sols, manifest):
         "onboard_localizations_applied": pc.fill_null(applied, False),
         "onboard_localizations_rejected": pc.fill_null(pc.invert(applied), False),
         "ground_localizations": sols.column("ground_localized"),
-        "truth_outside_disc_sols": pc.invert(sols.column("truth_inside_disc")),
+        "truth_outside_disc_sols": pc.fill_null(pc.invert(sols.column("truth_inside_disc")), False),
         "max_truth_error_m": sols.column("truth_error_m"),
         "goal_reached": sols.column("reached_goal"),
         "max_end_uncertainty_m": sols.column("end_uncertainty_m"),
@@ -348,6 +348,20 @@ def check_summary(problems, summary, runs, manifest):
             if not 0.0 <= lo <= rate["rate"] <= hi <= 1.0:
                 problems.add(w, f"{rate['name']}.interval [{lo}, {hi}] does not hold the rate "
                                 f"{rate['rate']} within [0, 1]")
+        drive_sols, _ = column("drive_sols", s)
+        outside, _ = column("truth_outside_disc_sols", s)
+        sols = int(np.sum(drive_sols))
+        cov = ss.get("disc_coverage")
+        if sols == 0:
+            problems.equal(w, "disc_coverage (no drive sol)", cov, None)
+        elif cov is None:
+            problems.add(w, "disc_coverage missing")
+        else:
+            inside = sols - int(np.sum(outside))
+            problems.equal(w, "disc_coverage.count (drive sols inside the disc)", cov["count"],
+                           inside)
+            problems.equal(w, "disc_coverage.runs (drive sols)", cov["runs"], sols)
+            problems.close(w, "disc_coverage.rate", cov["rate"], inside / sols, 0)
         for fig in ss["figures"]:
             if fig["name"] not in runs.column_names:
                 problems.add(w, f"figure {fig['name']!r}: not a runs.parquet column")

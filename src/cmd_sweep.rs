@@ -462,8 +462,9 @@ pub fn report(r: &SweepResult, scenario: &Scenario, seconds: f64, threads: usize
     );
     let _ = writeln!(
         s,
-        "Rates: % of runs [95 % Wilson interval]. Figures: mean (p5–p95) over the runs that have them\n\
-         (n = how many, when not all)."
+        "Rates: % of runs [95 % Wilson interval]. Disc coverage: % of drive sols, pooled over the runs,\n\
+         that ended with the truth inside the uncertainty disc [Wilson]. Figures: mean (p5–p95) over\n\
+         the runs that have them (n = how many, when not all)."
     );
     let mut figs = vec![Figure::SolsToGoal];
     if m.segment.is_some() {
@@ -486,6 +487,7 @@ pub fn report(r: &SweepResult, scenario: &Scenario, seconds: f64, threads: usize
     for k in rates {
         let _ = write!(s, " {:>19}", head_rate(k));
     }
+    let _ = write!(s, " {:>22}", "disc coverage (sols)");
     for f in &figs {
         let _ = write!(s, " {:>19}", f.name());
     }
@@ -503,6 +505,15 @@ pub fn report(r: &SweepResult, scenario: &Scenario, seconds: f64, threads: usize
             });
             let _ = write!(s, " {cell:>19}");
         }
+        let cell = ss.disc_coverage.as_ref().map_or("-".into(), |r| {
+            format!(
+                "{:.2} [{:.2}, {:.2}]",
+                100.0 * r.rate,
+                100.0 * r.interval.lo,
+                100.0 * r.interval.hi
+            )
+        });
+        let _ = write!(s, " {cell:>22}");
         for f in &figs {
             let cell = ss.figure(f.name()).map_or("-".into(), |sp| {
                 let d = if sp.mean.abs() >= 100.0 { 0 } else { 2 };

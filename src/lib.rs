@@ -14,6 +14,7 @@
 //!   mix of two runs.
 #![warn(missing_docs)]
 
+pub mod cmd_calibrate;
 pub mod cmd_localize;
 pub mod cmd_localize_rasters;
 pub mod cmd_map;

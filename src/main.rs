@@ -101,6 +101,10 @@ enum Command {
     /// continues after a kill; --shard K/N, `sweep merge` and `sweep slurm` spread a sweep over
     /// machines.
     Sweep(Box<solsim::cmd_sweep::SweepArgs>),
+    /// Re-derive a calibrated constant of the error model from a scenario's historic record
+    /// (the command each calibrated default names).
+    #[command(subcommand)]
+    Calibrate(solsim::cmd_calibrate::CalibrateCommand),
 }
 
 #[derive(Subcommand)]
@@ -387,6 +391,10 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
         }
         Command::Sweep(a) => {
             solsim::cmd_sweep::run(&a, budget, stdout)?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Calibrate(c) => {
+            solsim::cmd_calibrate::run(&c, budget, stdout)?;
             Ok(ExitCode::SUCCESS)
         }
         Command::LocalizeBench(a) => {

@@ -118,7 +118,7 @@ pub fn sols_csv(outcome: &CampaignOutcome) -> String {
             r.end_true_position_m[0],
             r.end_true_position_m[1],
             r.truth_error_m,
-            r.truth_inside_disc,
+            r.truth_inside_disc.map_or(String::new(), |b| b.to_string()),
             r.reached_goal,
         );
     }

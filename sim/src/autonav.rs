@@ -6,11 +6,12 @@
 //! target, it re-plans with A* on the [`PlanningGrid`]. No path → `NO_PATH` fault. The rover
 //! itself standing in a grown keep-out (or outside the shrunk keep-in) → `KEEP_OUT` / `KEEP_IN`.
 //!
-//! Each step, Visual Odometry succeeds with a probability set by the terrain class under the
+//! Each step, Visual Odometry fails with a probability set by the terrain class under the
 //! wheels (or, in a replay, the historic fraction of distance without VO is charged); the true
-//! motion slips and turns by a small heading error; the estimate follows the VO measurement
-//! (small noise) or, without VO, the commanded motion (blind to slip). The odometry distance feeds
-//! the uncertainty model.
+//! motion slips and is turned by the sol's heading knowledge error; the estimate follows VO's
+//! measurement (with the sol's scale error and per-step noise, but in the direction the rover
+//! believes it heads) or, without VO, the commanded motion (blind to slip). The odometry
+//! distance feeds the uncertainty model. [`crate::errors`] lists every error term.
 
 use nalgebra::{Rotation2, Vector2};
 use rand::RngExt;
@@ -18,6 +19,7 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
 
 use crate::astar::AStar;
+use crate::errors::{ErrorModel, SolErrors};
 use crate::outcome::{Fault, FaultKind};
 use crate::planning_grid::PlanningGrid;
 use crate::pose::{EstimatedPose, TruePose};
@@ -29,7 +31,7 @@ use maps::TerrainClass;
 pub const MAX_STEPS_PER_SOL: usize = 100_000;
 
 /// A value per terrain class.
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct PerTerrain {
     /// Value on sand.
     pub sand: f64,
@@ -49,6 +51,21 @@ impl PerTerrain {
             TerrainClass::Bedrock => self.bedrock,
         }
     }
+
+    /// Add `v` to the value of `class`.
+    pub fn add(&mut self, class: TerrainClass, v: f64) {
+        match class {
+            TerrainClass::Sand => self.sand += v,
+            TerrainClass::Soil => self.soil += v,
+            TerrainClass::Bedrock => self.bedrock += v,
+        }
+    }
+
+    /// The sum over the classes.
+    #[must_use]
+    pub fn total(&self) -> f64 {
+        self.sand + self.soil + self.bedrock
+    }
 }
 
 /// Rover and AutoNav settings (plain struct; every field has a unit and a default).
@@ -60,22 +77,15 @@ pub struct RoverParams {
     pub step_m: f64,
     /// A waypoint counts as reached within this distance, metres (default: 2.0).
     pub waypoint_tolerance_m: f64,
-    /// Probability that VO converges on a step, per terrain class
-    /// (default: sand 0.80, soil 0.97, bedrock 0.995).
-    pub vo_success: PerTerrain,
-    /// Mean slip fraction of commanded motion, per terrain class
-    /// (default: sand 0.12, soil 0.04, bedrock 0.02).
-    pub slip_fraction: PerTerrain,
     /// Path-cost multiplier of entering a cell, per terrain class, ≥ 1
     /// (default: sand 1.3, soil 1.0, bedrock 1.0).
     pub terrain_cost: PerTerrain,
-    /// VO measurement noise, as a fraction of step length, 1σ per axis (default: 0.01).
-    pub vo_noise_fraction: f64,
-    /// Attitude (heading) error, constant over a sol, 1σ degrees (default: 0.3).
-    pub heading_sigma_deg: f64,
     /// AutoNav keeps this far from closed cells when it has room, metres (default: 5.0).
     /// Shapes the path only; a passage is open as long as any cell of it is open.
     pub edge_buffer_m: f64,
+    /// What the estimate does not know: heading, VO scale and noise, VO failures, slip,
+    /// ground localization (default: [`ErrorModel::calibrated`]).
+    pub errors: ErrorModel,
 }
 
 impl Default for RoverParams {
@@ -84,24 +94,13 @@ impl Default for RoverParams {
             drive_rate_m_per_h: 100.0,
             step_m: 2.0,
             waypoint_tolerance_m: 2.0,
-            vo_success: PerTerrain {
-                sand: 0.80,
-                soil: 0.97,
-                bedrock: 0.995,
-            },
-            slip_fraction: PerTerrain {
-                sand: 0.12,
-                soil: 0.04,
-                bedrock: 0.02,
-            },
             terrain_cost: PerTerrain {
                 sand: 1.3,
                 soil: 1.0,
                 bedrock: 1.0,
             },
-            vo_noise_fraction: 0.01,
-            heading_sigma_deg: 0.3,
             edge_buffer_m: 5.0,
+            errors: ErrorModel::calibrated(),
         }
     }
 }
@@ -183,6 +182,8 @@ pub struct DriveResult {
     pub plans: u32,
     /// Estimated positions, one per step (the start included).
     pub path_m: Vec<[f64; 2]>,
+    /// Odometry distance by the terrain class under the true wheels, metres.
+    pub terrain_m: PerTerrain,
 }
 
 /// A planned path being followed.
@@ -235,12 +236,14 @@ pub struct DriveContext<'a> {
     pub model: &'a UncertaintyModel,
 }
 
-/// Drive one sol. Advances `state` and returns what happened.
+/// Drive one sol (or one segment of it) under the sol's error draws `errs`
+/// ([`ErrorModel::draw_sol`]). Advances `state` and returns what happened.
 pub fn drive_sol(
     ctx: &DriveContext<'_>,
     state: &mut RoverState,
     limits: DriveLimits,
     vo: VoSource,
+    errs: SolErrors,
     rng: &mut ChaCha8Rng,
     astar: &mut AStar,
 ) -> DriveResult {
@@ -250,8 +253,8 @@ pub fn drive_sol(
         path_m: vec![to_array(state.estimate.position_m)],
         ..Default::default()
     };
-    let heading_err =
-        Rotation2::new(rover.heading_sigma_deg.to_radians() * rng.sample::<f64, _>(StandardNormal));
+    let errors = &rover.errors;
+    let heading_err = Rotation2::new(errs.heading_error_rad);
     let rate_m_per_s = rover.drive_rate_m_per_h / 3600.0;
     for _ in 0..MAX_STEPS_PER_SOL {
         if state.next_waypoint >= ctx.route.len() {
@@ -337,20 +340,27 @@ pub fn drive_sol(
         let draw: f64 = rng.random();
         let (vo_ok, novo_fraction) = match vo {
             VoSource::Terrain => {
-                let ok = draw < rover.vo_success.get(class);
+                let ok = draw >= errors.vo_failure.get(class);
                 (ok, if ok { 0.0 } else { 1.0 })
             }
             VoSource::Historic { novo_fraction } => (draw >= novo_fraction, novo_fraction),
         };
         let slip_noise: f64 = rng.sample(StandardNormal);
-        let slip = (rover.slip_fraction.get(class) * (1.0 + 0.5 * slip_noise)).clamp(0.0, 0.9);
-        let mut d_true = heading_err * cmd * (1.0 - slip);
+        let slip = (errors.slip_fraction.get(class)
+            * (1.0 + errors.slip_sigma_relative * slip_noise))
+            .clamp(0.0, 0.9);
+        // The rover commands `cmd` in the frame it believes; the world turns it by the heading
+        // knowledge error. VO measures the motion in the rover's frame (so it sees the slip,
+        // not the heading error), scaled by the sol's scale error, plus noise; without VO the
+        // estimate takes the command (wheel odometry, blind to slip).
+        let progress = cmd * (1.0 - slip);
+        let mut d_true = heading_err * progress;
         let noise = Vector2::new(
             rng.sample::<f64, _>(StandardNormal),
             rng.sample::<f64, _>(StandardNormal),
         );
         let mut d_est = if vo_ok {
-            d_true + noise * (rover.vo_noise_fraction * cmd_len)
+            progress * (1.0 + errs.vo_scale_error) + noise * (errors.vo_noise_fraction * cmd_len)
         } else {
             cmd
         };
@@ -368,6 +378,7 @@ pub fn drive_sol(
         out.distance_m += odo;
         out.d_novo_m += odo * novo_fraction;
         out.d_vo_m += odo * (1.0 - novo_fraction);
+        out.terrain_m.add(class, odo);
         out.drive_time_s += cmd_len / rate_m_per_s;
         path.progress_m += odo;
         out.path_m.push(to_array(state.estimate.position_m));

@@ -146,7 +146,9 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
             if ground_knows && moved_since_ground_fix {
                 // MOB_GROUND_LOCALIZED_HERE with the plan: the mapping specialists matched the
                 // last post-drive panorama to the orbital map.
-                state.estimate.position_m = state.truth.position_m;
+                // Their fix is good to a HiRISE pixel or so, not perfect.
+                let [de, dn] = c.rover.errors.draw_ground_error(&mut rng);
+                state.estimate.position_m = state.truth.position_m + nalgebra::Vector2::new(de, dn);
                 state.uncertainty.reset_ground();
                 state.clear_path();
                 moved_since_ground_fix = false;
@@ -157,7 +159,7 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
                     localizer: "ground",
                     applied: true,
                     reason: None,
-                    error_m: Some(0.0),
+                    error_m: Some(de.hypot(dn)),
                     matched_error_m: None,
                     sigma_m: None,
                     search_radius_m: None,
@@ -204,6 +206,7 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
             distance_m: 0.0,
             d_vo_m: 0.0,
             d_novo_m: 0.0,
+            terrain_m: crate::autonav::PerTerrain::default(),
             drive_time_s: 0.0,
             start_uncertainty_m,
             end_uncertainty_m: start_uncertainty_m,
@@ -214,7 +217,7 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
             end_position_m: [0.0; 2],
             end_true_position_m: [0.0; 2],
             truth_error_m: estimate_error_m(&state.truth, &state.estimate),
-            truth_inside_disc: true,
+            truth_inside_disc: None,
             reached_goal: false,
             plans: 0,
             activity_plan: None,
@@ -287,6 +290,7 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
             record.distance_m = result.distance_m;
             record.d_vo_m = result.d_vo_m;
             record.d_novo_m = result.d_novo_m;
+            record.terrain_m = result.terrain_m;
             record.drive_time_s = result.drive_time_s;
             record.plans = result.plans;
             record.path_m = result.path_m;
@@ -309,15 +313,14 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
                 .reduce(f64::min);
             record.end_uncertainty_m = run.end_uncertainty_m;
             record.truth_error_m = run.truth_error_m;
-            record.truth_inside_disc = record.truth_error_m <= record.end_uncertainty_m + 1e-9;
+            record.truth_inside_disc =
+                Some(record.truth_error_m <= record.end_uncertainty_m + 1e-9);
             if let Some(event) = run.localization {
                 if event.applied {
                     sols_since_localization = 0;
                 }
                 record.onboard_localization = Some(event);
             }
-        } else {
-            record.truth_inside_disc = record.truth_error_m <= record.end_uncertainty_m + 1e-9;
         }
         record.end_position_m = [state.estimate.position_m.x, state.estimate.position_m.y];
         record.end_true_position_m = [state.truth.position_m.x, state.truth.position_m.y];
@@ -452,7 +455,10 @@ fn totals(
             .iter()
             .filter(|r| r.onboard_localization.as_ref().is_some_and(|l| !l.applied))
             .count() as u32,
-        truth_outside_disc: records.iter().filter(|r| !r.truth_inside_disc).count() as u32,
+        truth_outside_disc: records
+            .iter()
+            .filter(|r| r.truth_inside_disc == Some(false))
+            .count() as u32,
         goal_reached: goal_sol.is_some(),
         route_remaining_m: remaining,
         science: std::collections::BTreeMap::new(),

@@ -11,6 +11,8 @@
 //! - [`planning_grid`]: per-cell clearance to the zones, slope hazards, terrain class.
 //! - [`edt`], [`astar`], [`widest_path`]: the grid algorithms (exact EDT, A*, bottleneck path).
 //! - [`autonav`]: one sol's drive: plan, step, VO, slip, faults.
+//! - [`errors`]: what the estimate does not know (heading, VO scale and failures, slip, ground
+//!   localization), calibrated and stress presets.
 //! - [`localizer`]: the statistical onboard localizer (0.36 m mean / 0.93 m p99, paper 000 §4).
 //! - [`calendar`], [`strategy`]: operations calendar, data availability and the four strategies.
 //! - [`sol_plan`]: each drive sol's activity plan (heating, drive, imaging, passes, science, the
@@ -41,6 +43,7 @@ pub mod calendar;
 pub mod campaign;
 pub mod campaign_error;
 pub mod edt;
+pub mod errors;
 pub mod localizer;
 pub mod outcome;
 pub mod planning_grid;

@@ -290,6 +290,8 @@ pub struct SolRecord {
     pub d_vo_m: f64,
     /// Of which without VO, metres.
     pub d_novo_m: f64,
+    /// Distance by the terrain class under the true wheels, metres.
+    pub terrain_m: crate::autonav::PerTerrain,
     /// Time spent driving, seconds.
     pub drive_time_s: f64,
     /// Uncertainty radius at the start of the sol's activities (after any ground localization).
@@ -311,8 +313,11 @@ pub struct SolRecord {
     pub end_true_position_m: [f64; 2],
     /// Estimate-to-truth distance at the end of the drive, before localization, metres.
     pub truth_error_m: f64,
-    /// Whether the uncertainty disc contained the truth at the end of the drive.
-    pub truth_inside_disc: bool,
+    /// Whether the uncertainty disc contained the truth at the end of the drive (before any
+    /// localization); `None` on a sol without a drive, when nothing is checked (after a ground
+    /// localization the disc is 0 m and the fix's own error lies outside it until the rover
+    /// drives).
+    pub truth_inside_disc: Option<bool>,
     /// Whether the rover reached the end of the route this sol.
     pub reached_goal: bool,
     /// Number of path plans (A* runs) this sol.

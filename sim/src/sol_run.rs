@@ -18,6 +18,7 @@ use rand_chacha::ChaCha8Rng;
 use crate::astar::AStar;
 use crate::autonav::{DriveContext, DriveLimits, DriveResult, RoverState, VoSource, drive_sol};
 use crate::campaign::Campaign;
+use crate::errors::SolErrors;
 use crate::localizer::{ImageryLocalizer, LocalizationResult, OnboardLocalizer};
 use crate::outcome::{
     ActivityStep, LocalizationEvent, LocalizationKind, LocalizationStep, RejectionReason,
@@ -176,6 +177,8 @@ pub(crate) struct SolRun {
     pub localization: Option<LocalizationEvent>,
     /// The sol's plan as executed.
     pub plan: SolPlan,
+    /// The sol's heading and VO scale errors, drawn before its first drive segment.
+    errors: SolErrors,
     /// Whether the end-of-drive figures above are taken.
     drive_ended: bool,
 }
@@ -229,6 +232,9 @@ fn merge(total: &mut DriveResult, mut seg: DriveResult) {
     total.d_vo_m += seg.d_vo_m;
     total.d_novo_m += seg.d_novo_m;
     total.drive_time_s += seg.drive_time_s;
+    total.terrain_m.sand += seg.terrain_m.sand;
+    total.terrain_m.soil += seg.terrain_m.soil;
+    total.terrain_m.bedrock += seg.terrain_m.bedrock;
     total.plans += seg.plans;
     total.reached_goal |= seg.reached_goal;
     total.fault = total.fault.take().or(seg.fault);
@@ -329,6 +335,7 @@ pub(crate) fn execute_sol(
         truth_error_m: 0.0,
         localization: None,
         plan: SolPlan::default(),
+        errors: c.rover.errors.draw_sol(st.rng),
         drive_ended: false,
     };
     let mut now = window[0];
@@ -339,7 +346,9 @@ pub(crate) fn execute_sol(
         planned => {
             // No plan (a malformed or infeasible problem; the log says which): drive the
             // window as commanded; the localization follows right after it.
-            let r = drive_sol(env.ctx, st.rover, env.limits, env.vo, st.rng, st.astar);
+            let r = drive_sol(
+                env.ctx, st.rover, env.limits, env.vo, run.errors, st.rng, st.astar,
+            );
             merge(&mut run.drive, r);
             now = request.drive_start.after_s(run.drive.drive_time_s);
             run.plan = match planned {
@@ -448,7 +457,9 @@ fn drive_segment(
         },
         max_time_s: env.limits.max_time_s.map(|t| t - run.drive.drive_time_s),
     };
-    let r = drive_sol(env.ctx, st.rover, limits, env.vo, st.rng, st.astar);
+    let r = drive_sol(
+        env.ctx, st.rover, limits, env.vo, run.errors, st.rng, st.astar,
+    );
     let end = step.start_s.after_s(r.drive_time_s);
     let short = r.distance_m < step.drive_m - 0.5;
     merge(&mut run.drive, r);

@@ -154,6 +154,7 @@ fn drive_with(grid: &PlanningGrid, r0: f64) -> Option<FaultKind> {
         &mut state,
         limits,
         VoSource::Terrain,
+        rover.errors.draw_sol(&mut rng),
         &mut rng,
         &mut astar,
     );

@@ -26,6 +26,12 @@
 //! no_path_rate = [0.0, 0.10]       # the rate over the runs within [low, high]; also
 //!                                  # fault_rate, truth_outside_disc_rate, goal_reached_rate
 //! paired = { baseline = "ground", figure = "sols_to_goal", mean = [-2.0, -0.5] }
+//!
+//! [[expect]]                       # the disc's coverage: drive sols ending with the truth
+//! strategy = "ground"              # inside it, pooled over the runs
+//! runs = 200
+//! errors = "stress"                # under another error model than the scenario's
+//! disc_coverage = [0.0, 0.99]
 //! ```
 //!
 //! A statistical entry checks the point estimate (a rate, or the mean paired difference over
@@ -70,6 +76,8 @@ pub struct RawExpectation {
     fault_rate: Option<[f64; 2]>,
     truth_outside_disc_rate: Option<[f64; 2]>,
     goal_reached_rate: Option<[f64; 2]>,
+    disc_coverage: Option<[f64; 2]>,
+    errors: Option<String>,
     paired: Option<RawPaired>,
 }
 
@@ -91,6 +99,14 @@ pub enum StatCheck {
     Rate {
         /// Which rate.
         rate: RateKind,
+        /// Bounds (fractions).
+        lo: f64,
+        /// Bounds (fractions).
+        hi: f64,
+    },
+    /// The disc's coverage within `[lo, hi]`: the fraction of drive sols, pooled over the
+    /// runs, that ended with the truth inside the uncertainty disc.
+    DiscCoverage {
         /// Bounds (fractions).
         lo: f64,
         /// Bounds (fractions).
@@ -120,6 +136,8 @@ pub struct StatisticalExpectation {
     pub strategy: Strategy,
     /// Run indices `0..runs`.
     pub runs: u64,
+    /// The error model the sweep runs under, when not the scenario's own (`errors = "stress"`).
+    pub errors: Option<sim::errors::ErrorPreset>,
     /// The checks.
     pub checks: Vec<StatCheck>,
 }
@@ -257,7 +275,9 @@ impl RawExpectation {
             (RateKind::TruthOutsideDisc, self.truth_outside_disc_rate),
             (RateKind::GoalReached, self.goal_reached_rate),
         ];
-        let statistical = rates.iter().any(|(_, r)| r.is_some()) || self.paired.is_some();
+        let statistical = rates.iter().any(|(_, r)| r.is_some())
+            || self.disc_coverage.is_some()
+            || self.paired.is_some();
         match (self.runs, statistical) {
             (None, false) => {}
             (None, true) => {
@@ -298,7 +318,7 @@ impl RawExpectation {
                     return Err(ScenarioError::field(
                         path,
                         f("runs"),
-                        "only statistical checks (no_path_rate, fault_rate, truth_outside_disc_rate, goal_reached_rate, paired) beside runs: put checks of one run in their own [[expect]]",
+                        "only statistical checks (no_path_rate, fault_rate, truth_outside_disc_rate, goal_reached_rate, disc_coverage, paired) beside runs: put checks of one run in their own [[expect]]",
                         runs,
                     ));
                 }
@@ -315,6 +335,17 @@ impl RawExpectation {
                         }
                         checks.push(StatCheck::Rate { rate, lo, hi });
                     }
+                }
+                if let Some([lo, hi]) = self.disc_coverage {
+                    if !(lo.is_finite() && hi.is_finite() && 0.0 <= lo && lo <= hi && hi <= 1.0) {
+                        return Err(ScenarioError::field(
+                            path,
+                            f("disc_coverage"),
+                            "a range [low, high] of fractions, 0 ≤ low ≤ high ≤ 1",
+                            format!("[{lo}, {hi}]"),
+                        ));
+                    }
+                    checks.push(StatCheck::DiscCoverage { lo, hi });
                 }
                 if let Some(p) = self.paired {
                     let baseline = Strategy::from_name(&p.baseline).ok_or_else(|| {
@@ -365,11 +396,25 @@ impl RawExpectation {
                         "none",
                     ));
                 }
+                let errors = match self.errors.as_deref() {
+                    None => None,
+                    Some(name) => {
+                        Some(sim::errors::ErrorPreset::from_name(name).ok_or_else(|| {
+                            ScenarioError::field(
+                                path,
+                                f("errors"),
+                                "\"calibrated\" or \"stress\"",
+                                format!("{name:?}"),
+                            )
+                        })?)
+                    }
+                };
                 return Ok(Resolved::Sweep(StatisticalExpectation {
                     index,
                     what: self.what,
                     strategy,
                     runs,
+                    errors,
                     checks,
                 }));
             }

@@ -6,6 +6,7 @@
 //! - [`scenario`]: scenario files (TOML) → a validated [`Scenario`], loaded once; its maps,
 //!   zones and planning grid are shared ([`std::sync::Arc`]) by every run.
 //!   [`Scenario::run`] and [`Scenario::compare`] run strategies under any seed.
+//! - [`calibrate`]: calibrated constants re-derived from a scenario's historic record.
 //! - [`expect`]: the `[[expect]]` entries of a scenario ([`Expectation`]) and their checks.
 //! - [`science`]: a scenario's `[science]` section (targets and campaign intents).
 //! - [`campaign_file`]: the one-sol campaign files of `solsim plan` ([`CampaignFile`]).
@@ -46,6 +47,7 @@
 //! ```
 #![warn(missing_docs)]
 
+pub mod calibrate;
 pub mod campaign_file;
 mod check;
 pub mod error;

@@ -19,11 +19,12 @@ use crate::expect::{Expectation, Mismatch, StatisticalExpectation};
 use localization::matcher::Method;
 use localization::onboard::OnboardSettings;
 use maps::{GeoTransform, MapLayers, MemoryBudget, ZoneSet};
-use raw::RawPerTerrain;
 pub use raw::RawScenario;
+use raw::{RawErrors, RawPerTerrain};
 use sim::autonav::{PerTerrain, RoverParams};
 use sim::calendar::{Calendar, HistoricSol, Planning, SolEntry};
 use sim::campaign::{self, Campaign};
+use sim::errors::{ErrorModel, ErrorPreset};
 use sim::localizer::{ImageryLocalizer, OnboardLocalizer, StatisticalLocalizer};
 use sim::outcome::LegClearance;
 use sim::planning_grid::{GridParams, PlanningGrid};
@@ -172,8 +173,8 @@ type BudgetItem<'a> = (
     Option<(&'a Path, maps::raster_io::RasterHeader)>,
 );
 
-/// A validated scenario, ready to run.
-#[derive(Debug)]
+/// A validated scenario, ready to run. Cloning shares the maps, zones and planning grid.
+#[derive(Clone, Debug)]
 pub struct Scenario {
     /// The file it came from.
     pub path: PathBuf,
@@ -229,6 +230,70 @@ fn per_terrain(
         sand: one("sand", raw.sand, default.sand)?,
         soil: one("soil", raw.soil, default.soil)?,
         bedrock: one("bedrock", raw.bedrock, default.bedrock)?,
+    })
+}
+
+/// The `[errors]` section: a preset (`model`, default "calibrated") and field overrides.
+fn error_model(c: &Check<'_>, raw: RawErrors) -> Result<ErrorModel, ScenarioError> {
+    let preset = match raw.model.as_deref() {
+        None => ErrorPreset::Calibrated,
+        Some(name) => ErrorPreset::from_name(name).ok_or_else(|| {
+            ScenarioError::field(
+                c.path,
+                "errors.model",
+                "\"calibrated\" or \"stress\"",
+                format!("{name:?}"),
+            )
+        })?,
+    };
+    let d = preset.model();
+    let fraction = |field: &str, v: Option<f64>, d: f64| v.map_or(Ok(d), |v| c.fraction(field, v));
+    Ok(ErrorModel {
+        preset,
+        heading_sigma_deg: raw.heading_sigma_deg.map_or(Ok(d.heading_sigma_deg), |v| {
+            c.in_range(
+                "errors.heading_sigma_deg",
+                v,
+                0.0,
+                MAX_HEADING_SIGMA_DEG,
+                "degrees",
+            )
+        })?,
+        vo_scale_sigma: fraction(
+            "errors.vo_scale_sigma",
+            raw.vo_scale_sigma,
+            d.vo_scale_sigma,
+        )?,
+        vo_noise_fraction: fraction(
+            "errors.vo_noise_fraction",
+            raw.vo_noise_fraction,
+            d.vo_noise_fraction,
+        )?,
+        vo_failure: per_terrain(c, "errors.vo_failure", raw.vo_failure, d.vo_failure, true)?,
+        slip_fraction: per_terrain(
+            c,
+            "errors.slip_fraction",
+            raw.slip_fraction,
+            d.slip_fraction,
+            true,
+        )?,
+        slip_sigma_relative: fraction(
+            "errors.slip_sigma_relative",
+            raw.slip_sigma_relative,
+            d.slip_sigma_relative,
+        )?,
+        ground_localization_sigma_m: raw.ground_localization_sigma_m.map_or(
+            Ok(d.ground_localization_sigma_m),
+            |v| {
+                c.in_range(
+                    "errors.ground_localization_sigma_m",
+                    v,
+                    0.0,
+                    MAX_MARGIN_M,
+                    "metres",
+                )
+            },
+        )?,
     })
 }
 
@@ -292,14 +357,6 @@ impl ScenarioSpec {
                 .map_or(Ok(d.waypoint_tolerance_m), |v| {
                     c.positive_at_most("rover.waypoint_tolerance_m", v, MAX_TOLERANCE_M, "metres")
                 })?,
-            vo_success: per_terrain(&c, "rover.vo_success", r.vo_success, d.vo_success, true)?,
-            slip_fraction: per_terrain(
-                &c,
-                "rover.slip_fraction",
-                r.slip_fraction,
-                d.slip_fraction,
-                true,
-            )?,
             terrain_cost: per_terrain(
                 &c,
                 "rover.terrain_cost",
@@ -307,21 +364,10 @@ impl ScenarioSpec {
                 d.terrain_cost,
                 false,
             )?,
-            vo_noise_fraction: r.vo_noise_fraction.map_or(Ok(d.vo_noise_fraction), |v| {
-                c.fraction("rover.vo_noise_fraction", v)
-            })?,
-            heading_sigma_deg: r.heading_sigma_deg.map_or(Ok(d.heading_sigma_deg), |v| {
-                c.in_range(
-                    "rover.heading_sigma_deg",
-                    v,
-                    0.0,
-                    MAX_HEADING_SIGMA_DEG,
-                    "degrees",
-                )
-            })?,
             edge_buffer_m: r.edge_buffer_m.map_or(Ok(d.edge_buffer_m), |v| {
                 c.in_range("rover.edge_buffer_m", v, 0.0, MAX_MARGIN_M, "metres")
             })?,
+            errors: error_model(&c, raw.errors)?,
         };
         let gd = GridParams::default();
         let grid_params = GridParams {
@@ -1067,6 +1113,15 @@ impl Scenario {
             &runs[i]
         };
         self.expectations.iter().map(|e| e.check(outcome)).collect()
+    }
+
+    /// The same scenario under another error model (the maps, zones and grid shared): what a
+    /// statistical `[[expect]]` with `errors = "stress"` runs.
+    #[must_use]
+    pub fn with_errors(&self, errors: sim::errors::ErrorModel) -> Scenario {
+        let mut s = self.clone();
+        s.campaign.rover.errors = errors;
+        s
     }
 
     /// The strategies that make sense for this scenario (`replay` only with historic data).

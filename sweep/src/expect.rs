@@ -3,6 +3,7 @@
 use std::collections::BTreeMap;
 
 use sim::Strategy;
+use sim::errors::ErrorPreset;
 use study::expect::{Mismatch, StatCheck, StatisticalExpectation};
 use study::{Scenario, figure::Figure};
 
@@ -26,33 +27,42 @@ pub struct StatResult {
 /// each one, in file order.
 #[must_use]
 pub fn check_statistical(scenario: &Scenario) -> Vec<StatResult> {
-    let mut by_runs: BTreeMap<u64, Vec<Strategy>> = BTreeMap::new();
+    let mut by_runs: BTreeMap<(u64, Option<&'static str>), Vec<Strategy>> = BTreeMap::new();
     for e in &scenario.statistical_expectations {
-        let v = by_runs.entry(e.runs).or_default();
+        let v = by_runs.entry(key(e)).or_default();
         for s in e.strategies() {
             if !v.contains(&s) {
                 v.push(s);
             }
         }
     }
-    let swept: BTreeMap<u64, Vec<RunRow>> = by_runs
+    let swept: BTreeMap<(u64, Option<&'static str>), Vec<RunRow>> = by_runs
         .into_iter()
-        .map(|(runs, mut strategies)| {
+        .map(|((runs, errors), mut strategies)| {
             strategies.sort_by_key(|s| s.stream_id());
+            let under = errors
+                .and_then(ErrorPreset::from_name)
+                .map(|p| scenario.with_errors(p.model()));
+            let sc = under.as_ref().unwrap_or(scenario);
             let spec = SweepSpec {
                 strategies,
                 baseline: None,
                 shard: None,
-                ..SweepSpec::new(scenario, runs)
+                ..SweepSpec::new(sc, runs)
             };
-            (runs, run_in_memory(scenario, &spec, 0..runs))
+            ((runs, errors), run_in_memory(sc, &spec, 0..runs))
         })
         .collect();
     scenario
         .statistical_expectations
         .iter()
-        .map(|e| check(e, &swept[&e.runs], scenario.seed()))
+        .map(|e| check(e, &swept[&key(e)], scenario.seed()))
         .collect()
+}
+
+/// The sweep an expectation needs: its run count and error preset (if not the scenario's).
+fn key(e: &StatisticalExpectation) -> (u64, Option<&'static str>) {
+    (e.runs, e.errors.map(ErrorPreset::name))
 }
 
 /// Checks one expectation against the run rows of a sweep (which must include its strategies).
@@ -83,6 +93,26 @@ pub fn check(e: &StatisticalExpectation, rows: &[RunRow], sweep_seed: u64) -> St
                             rate.name(),
                             e.runs
                         ),
+                        expected: format!("[{lo}, {hi}]"),
+                        got: text.clone(),
+                    });
+                }
+                out.measured.push(text);
+            }
+            StatCheck::DiscCoverage { lo, hi } => {
+                let cov = summary::disc_coverage(&mine);
+                let text = cov.as_ref().map_or_else(
+                    || "disc_coverage: no drive sol".to_string(),
+                    |r| {
+                        format!(
+                            "disc_coverage {:.4} [{:.4}, {:.4}] ({} of {} drive sols)",
+                            r.rate, r.interval.lo, r.interval.hi, r.count, r.runs
+                        )
+                    },
+                );
+                if !cov.is_some_and(|r| r.rate >= lo - 1e-12 && r.rate <= hi + 1e-12) {
+                    out.mismatches.push(Mismatch {
+                        check: format!("{} disc_coverage over {} runs", e.strategy.name(), e.runs),
                         expected: format!("[{lo}, {hi}]"),
                         got: text.clone(),
                     });

@@ -122,8 +122,9 @@ pub struct SolRow {
     pub onboard_error_m: Option<f64>,
     /// Distance from the estimated to the true position at the end of the sol, metres.
     pub truth_error_m: f64,
-    /// Whether the true position lay inside the uncertainty disc.
-    pub truth_inside_disc: bool,
+    /// Whether the true position lay inside the uncertainty disc at the end of the drive
+    /// (`None`: no drive this sol, nothing checked).
+    pub truth_inside_disc: Option<bool>,
     /// Whether the rover reached the end of the route this sol.
     pub reached_goal: bool,
     /// Estimated position at the end of the sol, map easting, metres.
@@ -286,7 +287,7 @@ pub fn sols_schema() -> SchemaRef {
         field("onboard_rejection", Utf8, true),
         field("onboard_error_m", Float64, true),
         field("truth_error_m", Float64, false),
-        field("truth_inside_disc", Boolean, false),
+        field("truth_inside_disc", Boolean, true),
         field("reached_goal", Boolean, false),
         field("end_x_m", Float64, false),
         field("end_y_m", Float64, false),
@@ -387,7 +388,7 @@ pub fn sols_batch(rows: &[SolRow]) -> Result<RecordBatch, ArrowError> {
             strings(rows, |r| r.onboard_rejection.as_deref()),
             f64s(rows, |r| r.onboard_error_m),
             f64s(rows, |r| Some(r.truth_error_m)),
-            bools(rows, |r| Some(r.truth_inside_disc)),
+            bools(rows, |r| r.truth_inside_disc),
             bools(rows, |r| Some(r.reached_goal)),
             f64s(rows, |r| Some(r.end_x_m)),
             f64s(rows, |r| Some(r.end_y_m)),

@@ -47,14 +47,36 @@ pub fn counts_for(rate: RateKind, r: &RunRow) -> bool {
     }
 }
 
+/// The disc's coverage over `runs`: drive sols that ended with the truth inside the
+/// uncertainty disc, pooled over the runs, with a Wilson interval (`runs` counts the drive
+/// sols here). Sols of one run are not independent draws, so the interval is narrower than a
+/// run-clustered one would be; the point estimate is exact. `None`: no drive sol.
+#[must_use]
+pub fn disc_coverage(runs: &[&RunRow]) -> Option<Rate> {
+    let sols: u64 = runs.iter().map(|r| u64::from(r.drive_sols)).sum();
+    let outside: u64 = runs
+        .iter()
+        .map(|r| u64::from(r.truth_outside_disc_sols))
+        .sum();
+    let inside = sols.saturating_sub(outside);
+    stats::wilson(inside, sols, CONFIDENCE).map(|interval| Rate {
+        name: "disc_coverage".into(),
+        count: inside,
+        runs: sols,
+        rate: inside as f64 / sols as f64,
+        interval,
+    })
+}
+
 /// A rate with its Wilson interval.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Rate {
-    /// `no_path_rate`, `fault_rate`, `truth_outside_disc_rate`, `goal_reached_rate`.
+    /// `no_path_rate`, `fault_rate`, `truth_outside_disc_rate`, `goal_reached_rate`
+    /// (or `disc_coverage`, see [`disc_coverage`]).
     pub name: String,
-    /// Runs that count.
+    /// Runs that count (drive sols inside the disc, for `disc_coverage`).
     pub count: u64,
-    /// Runs.
+    /// Runs (drive sols, for `disc_coverage`).
     pub runs: u64,
     /// `count / runs`.
     pub rate: f64,
@@ -80,6 +102,8 @@ pub struct StrategySummary {
     pub runs: u64,
     /// Rates.
     pub rates: Vec<Rate>,
+    /// The disc's coverage over the drive sols ([`disc_coverage`]; `None`: no drive sol).
+    pub disc_coverage: Option<Rate>,
     /// Figures.
     pub figures: Vec<FigureSummary>,
 }
@@ -163,6 +187,7 @@ pub fn statistics(
                         })
                     })
                     .collect(),
+                disc_coverage: disc_coverage(&runs),
                 figures: figures
                     .iter()
                     .map(|f| {

@@ -20,6 +20,8 @@ pub struct RawScenario {
     #[serde(default)]
     pub(crate) rover: RawRover,
     #[serde(default)]
+    pub(crate) errors: RawErrors,
+    #[serde(default)]
     pub(crate) uncertainty: RawUncertainty,
     #[serde(default)]
     pub(crate) onboard_localization: RawLocalizer,
@@ -77,12 +79,21 @@ pub(crate) struct RawRover {
     pub(crate) drive_rate_m_per_h: Option<f64>,
     pub(crate) step_m: Option<f64>,
     pub(crate) waypoint_tolerance_m: Option<f64>,
-    pub(crate) vo_success: Option<RawPerTerrain>,
-    pub(crate) slip_fraction: Option<RawPerTerrain>,
     pub(crate) terrain_cost: Option<RawPerTerrain>,
-    pub(crate) vo_noise_fraction: Option<f64>,
-    pub(crate) heading_sigma_deg: Option<f64>,
     pub(crate) edge_buffer_m: Option<f64>,
+}
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawErrors {
+    pub(crate) model: Option<String>,
+    pub(crate) heading_sigma_deg: Option<f64>,
+    pub(crate) vo_scale_sigma: Option<f64>,
+    pub(crate) vo_noise_fraction: Option<f64>,
+    pub(crate) vo_failure: Option<RawPerTerrain>,
+    pub(crate) slip_fraction: Option<RawPerTerrain>,
+    pub(crate) slip_sigma_relative: Option<f64>,
+    pub(crate) ground_localization_sigma_m: Option<f64>,
 }
 
 #[derive(Debug, Default, Deserialize)]

@@ -1,0 +1,151 @@
+//! Calibrations against the historic record: a calibrated constant of the model is re-derived
+//! here, by the command its documentation names, so anyone can check it.
+//!
+//! - [`calibrate_vo`] (`solsim calibrate vo SCENARIO`): the VO failure probability on soil,
+//!   [`sim::errors::VO_FAILURE_SOIL`], from a record's distance without VO.
+
+use rayon::prelude::*;
+
+use sim::Strategy;
+use sim::autonav::PerTerrain;
+use sim::errors::{VO_FAILURE_RELATIVE, VO_FAILURE_SOIL};
+
+use crate::Scenario;
+
+/// What [`calibrate_vo`] found.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct VoCalibration {
+    /// The scenario.
+    pub scenario: String,
+    /// Ground re-simulations the terrain shares come from.
+    pub runs: u64,
+    /// The record's distance over the sols with history, metres.
+    pub record_distance_m: f64,
+    /// Of which without VO, metres.
+    pub record_novo_m: f64,
+    /// Share of the re-simulated ground drives' distance on each terrain class (sums to 1).
+    pub terrain_share: PerTerrain,
+    /// The relative failure rates per class (judgement, [`VO_FAILURE_RELATIVE`]).
+    pub relative: PerTerrain,
+    /// The solved VO failure probability per step on soil.
+    pub vo_failure_soil: f64,
+    /// The value the code ships ([`VO_FAILURE_SOIL`]).
+    pub shipped_vo_failure_soil: f64,
+    /// Under the shipped value: mean metres without VO over the re-simulated drives, scaled to
+    /// the record's distance.
+    pub simulated_novo_m: f64,
+    /// 95 % normal interval of that mean over the runs.
+    pub simulated_novo_interval_m: [f64; 2],
+}
+
+/// Why a calibration cannot run.
+#[derive(Debug, thiserror::Error)]
+pub enum CalibrationError {
+    /// The scenario has no historic distance to calibrate to.
+    #[error(
+        "{0}: no historic record to calibrate to (needs sols with historic_distance_m > 0 and historic_novo_m)"
+    )]
+    NoRecord(String),
+    /// The ground re-simulations never drove.
+    #[error("{0}: the ground strategy drove no distance in any run; nothing to calibrate")]
+    NoDrive(String),
+    /// Zero runs.
+    #[error("--runs must be at least 2 (got {0})")]
+    TooFewRuns(u64),
+}
+
+/// Solve the VO failure probability on soil so that the expected distance without VO over the
+/// terrain a re-simulated ground drive crosses equals the record's:
+/// `p_soil · Σ_class share_class · relative_class / (1 − slip_class) = record_novo /
+/// record_distance` (a failed step charges its whole commanded length, a VO step the length
+/// after slip).
+///
+/// The shares come from `runs` ground re-simulations (run indices 0..runs, in parallel; the
+/// result does not depend on the thread count). The same runs, under the shipped value, give
+/// the simulated distance without VO to set against the record.
+///
+/// # Errors
+/// [`CalibrationError`] when the scenario has no record, or nothing drove.
+pub fn calibrate_vo(scenario: &Scenario, runs: u64) -> Result<VoCalibration, CalibrationError> {
+    if runs < 2 {
+        return Err(CalibrationError::TooFewRuns(runs));
+    }
+    let historic: Vec<_> = scenario
+        .campaign
+        .calendar
+        .sols
+        .iter()
+        .filter_map(|s| s.historic)
+        .collect();
+    let record_distance_m: f64 = historic.iter().map(|h| h.distance_m).sum();
+    let record_novo_m: f64 = historic.iter().map(|h| h.novo_m).sum();
+    if record_distance_m.is_nan() || record_distance_m <= 0.0 {
+        return Err(CalibrationError::NoRecord(scenario.name.clone()));
+    }
+    let per_run: Vec<(PerTerrain, f64)> = (0..runs)
+        .into_par_iter()
+        .map(|r| {
+            let o = scenario.run_index(Strategy::Ground, r);
+            let mut t = PerTerrain::default();
+            let mut novo = 0.0;
+            for s in &o.sols {
+                t.sand += s.terrain_m.sand;
+                t.soil += s.terrain_m.soil;
+                t.bedrock += s.terrain_m.bedrock;
+                novo += s.d_novo_m;
+            }
+            (t, novo)
+        })
+        .collect();
+    let mut terrain = PerTerrain::default();
+    for (t, _) in &per_run {
+        terrain.sand += t.sand;
+        terrain.soil += t.soil;
+        terrain.bedrock += t.bedrock;
+    }
+    let total = terrain.total();
+    if total.is_nan() || total <= 0.0 {
+        return Err(CalibrationError::NoDrive(scenario.name.clone()));
+    }
+    let share = PerTerrain {
+        sand: terrain.sand / total,
+        soil: terrain.soil / total,
+        bedrock: terrain.bedrock / total,
+    };
+    // A step without VO charges the commanded length (wheel odometry, blind to slip), a step
+    // with VO about (1 − slip) of it, so per metre of odometry a class charges
+    // p · relative / (1 − mean slip) metres without VO (to first order in the slip spread).
+    let slip = scenario.campaign.rover.errors.slip_fraction;
+    let weight = share.sand * VO_FAILURE_RELATIVE.sand / (1.0 - slip.sand)
+        + share.soil * VO_FAILURE_RELATIVE.soil / (1.0 - slip.soil)
+        + share.bedrock * VO_FAILURE_RELATIVE.bedrock / (1.0 - slip.bedrock);
+    let vo_failure_soil = record_novo_m / record_distance_m / weight;
+    // Simulated metres without VO per metre driven, per run, scaled to the record's distance.
+    let scaled: Vec<f64> = per_run
+        .iter()
+        .map(|(t, novo)| {
+            let d = t.total();
+            if d > 0.0 {
+                novo / d * record_distance_m
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let n = scaled.len() as f64;
+    let mean = scaled.iter().sum::<f64>() / n;
+    let var = scaled.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    let half = 1.959_963_984_540_054 * (var / n).sqrt();
+    Ok(VoCalibration {
+        scenario: scenario.name.clone(),
+        runs,
+        record_distance_m,
+        record_novo_m,
+        terrain_share: share,
+        relative: VO_FAILURE_RELATIVE,
+        vo_failure_soil,
+        shipped_vo_failure_soil: VO_FAILURE_SOIL,
+        simulated_novo_m: mean,
+        simulated_novo_interval_m: [mean - half, mean + half],
+    })
+}
