@@ -10,14 +10,15 @@ use std::sync::Arc;
 
 use crate::seeds::{Purpose, stream_seed};
 
-use crate::autonav::{DriveContext, DriveLimits, RoverParams, RoverState, VoSource};
-use crate::calendar::{Calendar, Planning};
+use crate::autonav::{DriveContext, DriveLimits, RoverParams, RoverState};
+use crate::calendar::Calendar;
 use crate::localizer::OnboardLocalizer;
 use crate::outcome::{
     ActivityStep, CampaignOutcome, FaultKind, LegClearance, LocalizationEvent, LocalizationKind,
     LocalizationStep, ScienceTally, SkipReason, SolRecord, Totals,
 };
 use crate::planning_grid::PlanningGrid;
+use crate::policy::{Policy, RunSoFar};
 use crate::pose::estimate_error_m;
 use crate::science::{Science, ScienceProgress, SolScience};
 use crate::sol_plan::{SolPlanParams, SolPlanRequest};
@@ -123,11 +124,11 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
     let mut sols_since_localization = 0u32;
     let mut goal_sol: Option<u32> = None;
     // Per plan: the sols that may drive and why the others may not.
+    let policy = Policy::new(strategy, c.max_extension_sols);
     let mut plan_uplink = cal.sols.first().map_or(0, |s| s.sol);
     let mut plan_drive: Vec<Option<SkipReason>> =
         vec![Some(SkipReason::NoPlanUplinked); cal.sols.len()];
-    let mut plan_last_drive: Option<usize> = None;
-    let mut planning = Planning::Ground;
+    let mut panorama_sol: Option<usize> = None;
     let mut progress = ScienceProgress::default();
 
     for (idx, entry) in cal.sols.iter().enumerate() {
@@ -136,10 +137,6 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
             plan_uplink = entry.sol;
             let next_uplink = cal.next_uplink_after(idx);
             let ground_knows = last_drive.is_none_or(|s| cal.data_available(s, Some(idx)));
-            planning = strategy
-                .planning()
-                .or(entry.historic_planning)
-                .unwrap_or(Planning::Ground);
             if ground_knows && halted_by_fault.is_some() {
                 halted_by_fault = None;
             }
@@ -174,27 +171,20 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
                     }],
                 });
             }
-            let decided = plan_drives(cal, strategy, planning, ground_knows, idx, next_uplink);
-            plan_last_drive = decided.last_drive;
+            let decided = policy.plan(cal, idx, next_uplink, ground_knows);
+            panorama_sol = decided.panorama_sol;
             plan_drive[idx..idx + decided.reasons.len()].copy_from_slice(&decided.reasons);
         }
 
-        let skip_reason = if goal_sol.is_some() {
-            Some(SkipReason::RouteComplete)
-        } else if !entry.drive_allowed && strategy != Strategy::Replay {
-            Some(SkipReason::NoDriveInCalendar)
-        } else if halted_by_fault.is_some() {
-            Some(SkipReason::HaltedAfterFault)
-        } else if let Some(reason) = plan_drive[idx] {
-            Some(reason)
-        } else if strategy == Strategy::Extension && sols_since_localization >= c.max_extension_sols
-        {
-            Some(SkipReason::ExtensionLimit {
-                sols_without_localization: c.max_extension_sols,
-            })
-        } else {
-            None
-        };
+        let skip_reason = policy.skip_reason(
+            entry,
+            plan_drive[idx],
+            RunSoFar {
+                goal_reached: goal_sol.is_some(),
+                halted_by_fault: halted_by_fault.is_some(),
+                sols_since_localization,
+            },
+        );
 
         let start_uncertainty_m = state.uncertainty.radius_m(&c.model);
         let start_waypoint = state.next_waypoint;
@@ -227,9 +217,7 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
         if record.drove {
             let mut end = cal.drive_end;
             // The ground's next plan needs this sol's panorama from the afternoon pass.
-            let panorama_on_pass = planning == Planning::Ground
-                && entry.downlink_lmst.is_some()
-                && plan_last_drive == Some(idx);
+            let panorama_on_pass = entry.downlink_lmst.is_some() && panorama_sol == Some(idx);
             if let (true, Some(pass)) = (panorama_on_pass, entry.downlink_lmst) {
                 end = end.min((pass - i64::from(c.post_drive_imaging_s)).max(SolSeconds::MIDNIGHT));
             }
@@ -237,32 +225,12 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
                 max_distance_m: None,
                 max_time_s: Some((end - cal.drive_start).max(0) as f64),
             };
-            let (limits, vo) = match (strategy, entry.historic) {
-                // A historic fault must emerge from the geometry: drive the window, not the record.
-                (Strategy::Replay, Some(h)) => (
-                    if h.ended_in_fault {
-                        window
-                    } else {
-                        DriveLimits {
-                            max_distance_m: Some(h.distance_m),
-                            max_time_s: None,
-                        }
-                    },
-                    VoSource::Historic {
-                        novo_fraction: if h.distance_m > 0.0 {
-                            h.novo_m / h.distance_m
-                        } else {
-                            0.0
-                        },
-                    },
-                ),
-                _ => (window, VoSource::Terrain),
-            };
+            let (limits, vo) = policy.drive_budget(entry, window);
             let env = SolEnv {
                 c,
                 ctx: &ctx,
                 sol: entry.sol,
-                onboard: strategy.onboard_localization(),
+                onboard: policy.localizes_onboard,
                 limits,
                 vo,
             };
@@ -344,68 +312,6 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
         seed: c.seed,
         sols: records,
         totals,
-    }
-}
-
-/// Which sols of a plan may drive: `reasons[k]` is `None` for sol `first + k` if it may, else why
-/// not; `last_drive` is the plan's last drive sol under ground planning.
-struct PlanDrives {
-    reasons: Vec<Option<SkipReason>>,
-    last_drive: Option<usize>,
-}
-
-/// Decide the drive sols of the plan uplinked at calendar index `first` (it runs up to the next
-/// uplink).
-fn plan_drives(
-    cal: &Calendar,
-    strategy: Strategy,
-    planning: Planning,
-    ground_knows: bool,
-    first: usize,
-    next_uplink: Option<usize>,
-) -> PlanDrives {
-    let sols = &cal.sols[first..next_uplink.unwrap_or(cal.sols.len())];
-    if strategy == Strategy::Replay {
-        let reasons = sols
-            .iter()
-            .map(|e| match e.historic {
-                Some(h) if h.distance_m > 0.0 => None,
-                _ => Some(SkipReason::NoHistoricDrive),
-            })
-            .collect();
-        return PlanDrives {
-            reasons,
-            last_drive: None,
-        };
-    }
-    match planning {
-        Planning::Extension => PlanDrives {
-            reasons: vec![None; sols.len()],
-            last_drive: None,
-        },
-        Planning::Ground if !ground_knows => PlanDrives {
-            reasons: vec![Some(SkipReason::AwaitingPostDriveData); sols.len()],
-            last_drive: None,
-        },
-        Planning::Ground => {
-            // Drive up to the last sol whose post-drive data reaches Earth before the next plan.
-            let last_drive = (first..first + sols.len())
-                .rev()
-                .find(|&j| cal.sols[j].drive_allowed && cal.data_available(j, next_uplink));
-            let reasons = (first..first + sols.len())
-                .map(|j| {
-                    if last_drive.is_some_and(|l| j <= l) {
-                        None
-                    } else {
-                        Some(SkipReason::DataTooLateForNextPlan)
-                    }
-                })
-                .collect();
-            PlanDrives {
-                reasons,
-                last_drive,
-            }
-        }
     }
 }
 

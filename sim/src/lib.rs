@@ -14,7 +14,9 @@
 //! - [`errors`]: what the estimate does not know (heading, VO scale and failures, slip, ground
 //!   localization), calibrated and stress presets.
 //! - [`localizer`]: the statistical onboard localizer (0.36 m mean / 0.93 m p99, paper 000 §4).
-//! - [`calendar`], [`strategy`]: operations calendar, data availability and the four strategies.
+//! - [`calendar`], [`strategy`]: operations calendar, data availability and the five strategies;
+//!   [`policy`]: what each strategy decides (which sols drive, when a drive is cut, when the
+//!   rover localizes), in one place.
 //! - [`sol_plan`]: each drive sol's activity plan (heating, drive, imaging, passes, science, the
 //!   onboard localization chain) from the `planner` crate, executed step by step with repairs
 //!   and replans ([`sol_plan::SolExecution`]), every plan validated.
@@ -47,6 +49,7 @@ pub mod errors;
 pub mod localizer;
 pub mod outcome;
 pub mod planning_grid;
+pub mod policy;
 pub mod pose;
 pub mod science;
 pub mod seeds;

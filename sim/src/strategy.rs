@@ -4,9 +4,11 @@
 //! |---|---|---|
 //! | `replay` | as historically recorded (per plan), historic distances and VO | ground |
 //! | `ground` | ground-in-the-loop (today's practice) | ground, at each uplink |
-//! | `onboard` | ground-in-the-loop | onboard after every drive sol, and ground |
+//! | `onboard` | every sol the calendar allows; none skipped or cut for a panorama | onboard after every drive sol, and ground |
 //! | `extension` | opportunistic extension at every uplink | ground only, when data allows |
 //! | `extension+onboard` | opportunistic extension | onboard after every drive sol, and ground |
+//!
+//! What each one decides, sol by sol, is in [`crate::policy`].
 
 use crate::calendar::Planning;
 
