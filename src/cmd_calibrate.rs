@@ -7,7 +7,7 @@ use anyhow::Context as _;
 use clap::{Args, Subcommand};
 use maps::MemoryBudget;
 use study::Scenario;
-use study::calibrate::{VoCalibration, calibrate_vo};
+use study::calibrate::{VoCalibration, calibrate_drive_rate, calibrate_vo};
 
 /// `solsim calibrate`.
 #[derive(Subcommand)]
@@ -21,12 +21,20 @@ pub enum CalibrateCommand {
     /// solved and the shipped value, and the distance without VO the shipped value gives on
     /// the same drives, against the record.
     Vo(VoArgs),
+    /// The AutoNav drive rate at which the ground strategy, re-simulated, drives as many metres
+    /// per drive sol as the record (the rapid traverse: 5108 m in 23 drive sols, 222 m).
+    ///
+    /// Bisects the rate; each step runs the ground strategy over run indices 0..RUNS. Prints
+    /// the record's metres per drive sol, the scenario's rate and what ground drives at it, and
+    /// the calibrated rate. The bundled rapid traverse's `drive_rate_m_per_h` comes from it.
+    DriveRate(VoArgs),
 }
 
-/// `solsim calibrate vo`.
+/// `solsim calibrate vo` and `solsim calibrate drive-rate`.
 #[derive(Args)]
 pub struct VoArgs {
-    /// Scenario with a historic record (historic_distance_m and historic_novo_m per sol).
+    /// Scenario with a historic record (historic_distance_m, and for `vo` historic_novo_m, per
+    /// sol).
     scenario: PathBuf,
     /// Ground re-simulations (run indices 0..RUNS).
     #[arg(long, value_name = "N", default_value_t = 200,
@@ -58,6 +66,39 @@ pub fn run(
                 )?;
             } else {
                 print_vo(&c, out)?;
+            }
+            Ok(())
+        }
+        CalibrateCommand::DriveRate(a) => {
+            let scenario = Scenario::load_within(&a.scenario, budget)?;
+            let c = calibrate_drive_rate(&scenario, a.runs)?;
+            if a.json {
+                writeln!(
+                    out,
+                    "{}",
+                    serde_json::to_string_pretty(&c).context("serialising the calibration")?
+                )?;
+            } else {
+                writeln!(
+                    out,
+                    "{} — drive rate calibration over {} ground re-simulations per step",
+                    c.scenario, c.runs
+                )?;
+                writeln!(
+                    out,
+                    "record: {:.1} m per drive sol",
+                    c.record_m_per_drive_sol
+                )?;
+                writeln!(
+                    out,
+                    "at the scenario's rate, {:.1} m/h: ground drives {:.1} m per drive sol",
+                    c.scenario_rate_m_per_h, c.ground_m_per_drive_sol_at_scenario_rate
+                )?;
+                writeln!(
+                    out,
+                    "calibrated rate: {:.1} m/h (ground then drives {:.1} m per drive sol)",
+                    c.calibrated_rate_m_per_h, c.ground_m_per_drive_sol_at_calibrated_rate
+                )?;
             }
             Ok(())
         }

@@ -3,6 +3,8 @@
 //!
 //! - [`calibrate_vo`] (`solsim calibrate vo SCENARIO`): the VO failure probability on soil,
 //!   [`sim::errors::VO_FAILURE_SOIL`], from a record's distance without VO.
+//! - [`calibrate_drive_rate`] (`solsim calibrate drive-rate SCENARIO`): the AutoNav rate at
+//!   which the ground strategy drives the record's metres per drive sol.
 
 use rayon::prelude::*;
 
@@ -147,5 +149,95 @@ pub fn calibrate_vo(scenario: &Scenario, runs: u64) -> Result<VoCalibration, Cal
         shipped_vo_failure_soil: VO_FAILURE_SOIL,
         simulated_novo_m: mean,
         simulated_novo_interval_m: [mean - half, mean + half],
+    })
+}
+
+/// What [`calibrate_drive_rate`] found.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct DriveRateCalibration {
+    /// The scenario.
+    pub scenario: String,
+    /// Ground re-simulations per evaluated rate.
+    pub runs: u64,
+    /// The record's metres per drive sol (its distance over the sols it drove).
+    pub record_m_per_drive_sol: f64,
+    /// The scenario's own AutoNav rate, m/h.
+    pub scenario_rate_m_per_h: f64,
+    /// The ground strategy's mean metres per drive sol at the scenario's rate.
+    pub ground_m_per_drive_sol_at_scenario_rate: f64,
+    /// The rate at which the ground strategy's mean metres per drive sol equals the record's.
+    pub calibrated_rate_m_per_h: f64,
+    /// The ground strategy's mean metres per drive sol at the calibrated rate.
+    pub ground_m_per_drive_sol_at_calibrated_rate: f64,
+}
+
+/// The ground strategy's metres per drive sol, pooled over run indices `0..runs`, at AutoNav
+/// rate `rate_m_per_h`.
+fn ground_m_per_drive_sol(scenario: &Scenario, rate_m_per_h: f64, runs: u64) -> f64 {
+    let mut s = scenario.clone();
+    s.campaign.rover.drive_rate_m_per_h = rate_m_per_h;
+    let per_run: Vec<(f64, u32)> = (0..runs)
+        .into_par_iter()
+        .map(|r| {
+            let o = s.run_index(Strategy::Ground, r);
+            (o.totals.distance_m, o.totals.drive_sols)
+        })
+        .collect();
+    let d: f64 = per_run.iter().map(|p| p.0).sum();
+    let n: u32 = per_run.iter().map(|p| p.1).sum();
+    if n == 0 { 0.0 } else { d / f64::from(n) }
+}
+
+/// Solve the AutoNav drive rate at which the re-simulated ground strategy drives as many metres
+/// per drive sol as the record (paper 000 §8's rapid traverse: 5108 m in 23 drive sols,
+/// 222 m). Bisection on the rate between 10 % and 300 % of the scenario's, 40 steps; each step
+/// runs `runs` ground re-simulations (run indices 0..runs, common to every step).
+///
+/// # Errors
+/// [`CalibrationError`] when the scenario has no record or the ground never drives.
+pub fn calibrate_drive_rate(
+    scenario: &Scenario,
+    runs: u64,
+) -> Result<DriveRateCalibration, CalibrationError> {
+    if runs < 2 {
+        return Err(CalibrationError::TooFewRuns(runs));
+    }
+    let driven: Vec<f64> = scenario
+        .campaign
+        .calendar
+        .sols
+        .iter()
+        .filter_map(|s| s.historic)
+        .map(|h| h.distance_m)
+        .filter(|&d| d > 0.0)
+        .collect();
+    if driven.is_empty() {
+        return Err(CalibrationError::NoRecord(scenario.name.clone()));
+    }
+    let target = driven.iter().sum::<f64>() / driven.len() as f64;
+    let own = scenario.campaign.rover.drive_rate_m_per_h;
+    let at_own = ground_m_per_drive_sol(scenario, own, runs);
+    if at_own <= 0.0 {
+        return Err(CalibrationError::NoDrive(scenario.name.clone()));
+    }
+    // Metres per drive sol grow with the rate (the drives are time-limited): bisect.
+    let (mut lo, mut hi) = (0.1 * own, 3.0 * own);
+    for _ in 0..40 {
+        let mid = 0.5 * (lo + hi);
+        if ground_m_per_drive_sol(scenario, mid, runs) < target {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let rate = 0.5 * (lo + hi);
+    Ok(DriveRateCalibration {
+        scenario: scenario.name.clone(),
+        runs,
+        record_m_per_drive_sol: target,
+        scenario_rate_m_per_h: own,
+        ground_m_per_drive_sol_at_scenario_rate: at_own,
+        calibrated_rate_m_per_h: rate,
+        ground_m_per_drive_sol_at_calibrated_rate: ground_m_per_drive_sol(scenario, rate, runs),
     })
 }
