@@ -273,6 +273,7 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
                     scenario.description.trim()
                 )?;
                 write!(stdout, "{}", report::compare_table(&outcomes))?;
+                write!(stdout, "{}", report::against_ground(&scenario, &outcomes))?;
             }
             write_files(&a.output, &scenario, &outcomes, legs, stdout)?;
             Ok(ExitCode::SUCCESS)

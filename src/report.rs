@@ -383,3 +383,152 @@ fn science_table(outcomes: &[CampaignOutcome], s: &mut String) {
         let _ = writeln!(s, "  {replans:>16}");
     }
 }
+
+/// What kind of sol a drive was gained on: the calendar's reasons the ground could not use it.
+fn sol_kinds(entry: &sim::SolEntry) -> Vec<&'static str> {
+    let mut k = Vec::new();
+    if entry.restricted {
+        k.push("restricted");
+    }
+    if !entry.uplink {
+        k.push("no uplink (weekend or multi-sol plan)");
+    }
+    if !entry.downlink {
+        k.push("no downlink pass");
+    }
+    k
+}
+
+/// Under the compare table: each strategy against `ground` on the same seed and calendar —
+/// sols to cover the study segment, drive sols gained and on which kind of sol, metres,
+/// faults avoided, peak uncertainty, uplinks that needed a drive plan, drive time. Empty when
+/// `ground` is not among the outcomes.
+#[must_use]
+pub fn against_ground(scenario: &Scenario, outcomes: &[CampaignOutcome]) -> String {
+    let Some(base) = outcomes
+        .iter()
+        .find(|o| o.strategy == sim::Strategy::Ground)
+    else {
+        return String::new();
+    };
+    let cal = &scenario.campaign.calendar;
+    let drove = |o: &CampaignOutcome| -> Vec<u32> {
+        o.sols.iter().filter(|r| r.drove).map(|r| r.sol).collect()
+    };
+    let plans = |o: &CampaignOutcome| -> usize {
+        let mut u: Vec<u32> = o
+            .sols
+            .iter()
+            .filter(|r| r.drove)
+            .map(|r| r.plan_uplink_sol)
+            .collect();
+        u.dedup();
+        u.len()
+    };
+    let hours = |o: &CampaignOutcome| o.sols.iter().map(|r| r.drive_time_s).sum::<f64>() / 3600.0;
+    let segment = |o: &CampaignOutcome| {
+        scenario.study_segment.map(|g| {
+            o.sols_to_cover(g.from_sol, g.distance_m)
+                .map_or("not covered within the calendar".to_string(), |n| {
+                    format!("covered in {n} sols")
+                })
+        })
+    };
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "\nAgainst ground (same seed, same calendar; one run — `solsim sweep` gives rates and intervals):"
+    );
+    if let (Some(g), Some(b)) = (scenario.study_segment, segment(base)) {
+        let _ = writeln!(
+            s,
+            "  study segment ({:.0} m from sol {}): ground {b}",
+            g.distance_m, g.from_sol
+        );
+    }
+    let base_drove = drove(base);
+    for o in outcomes
+        .iter()
+        .filter(|o| o.strategy != sim::Strategy::Ground)
+    {
+        let t = &o.totals;
+        let bt = &base.totals;
+        let mine = drove(o);
+        let gained: Vec<u32> = mine
+            .iter()
+            .copied()
+            .filter(|d| !base_drove.contains(d))
+            .collect();
+        let lost = base_drove.iter().filter(|d| !mine.contains(d)).count();
+        let mut kinds: std::collections::BTreeMap<&str, u32> = std::collections::BTreeMap::new();
+        for sol in &gained {
+            if let Some(e) = cal.sols.iter().find(|e| e.sol == *sol) {
+                for k in sol_kinds(e) {
+                    *kinds.entry(k).or_default() += 1;
+                }
+            }
+        }
+        let _ = writeln!(s, "  {}:", o.strategy);
+        if let Some(seg) = segment(o) {
+            let _ = writeln!(s, "    study segment: {seg}");
+        }
+        let listed = gained
+            .iter()
+            .map(u32::to_string)
+            .collect::<Vec<_>>()
+            .join(", ");
+        let kinds_text = kinds
+            .iter()
+            .map(|(k, n)| format!("{n} {k}"))
+            .collect::<Vec<_>>()
+            .join(", ");
+        let _ = writeln!(
+            s,
+            "    drive sols: {} against {} ({:+}); gained {}{}{}",
+            t.drive_sols,
+            bt.drive_sols,
+            i64::from(t.drive_sols) - i64::from(bt.drive_sols),
+            if gained.is_empty() {
+                "none".to_string()
+            } else {
+                format!("sols {listed}")
+            },
+            if kinds_text.is_empty() {
+                String::new()
+            } else {
+                format!(" ({kinds_text})")
+            },
+            if lost > 0 {
+                format!("; lost {lost}")
+            } else {
+                String::new()
+            }
+        );
+        let _ = writeln!(
+            s,
+            "    distance: {:.1} m against {:.1} m ({:+.1} m); drive time {:.1} h against {:.1} h",
+            t.distance_m,
+            bt.distance_m,
+            t.distance_m - bt.distance_m,
+            hours(o),
+            hours(base)
+        );
+        let _ = writeln!(
+            s,
+            "    NO_PATH {} against {}, all faults {} against {}; peak r {:.2} m against {:.2} m",
+            t.no_path_faults,
+            bt.no_path_faults,
+            t.faults,
+            bt.faults,
+            t.max_uncertainty_m,
+            bt.max_uncertainty_m
+        );
+        let _ = writeln!(
+            s,
+            "    uplinks that needed a drive plan: {} against {}",
+            plans(o),
+            plans(base)
+        );
+    }
+    s
+}
