@@ -442,7 +442,7 @@ pub fn against_ground(scenario: &Scenario, outcomes: &[CampaignOutcome]) -> Stri
     if let (Some(g), Some(b)) = (scenario.study_segment, segment(base)) {
         let _ = writeln!(
             s,
-            "  study segment ({:.0} m from sol {}): ground {b}",
+            "  study segment ({:.0} m from sol {}): ground: {b}",
             g.distance_m, g.from_sol
         );
     }
