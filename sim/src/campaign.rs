@@ -1,9 +1,9 @@
 //! The multi-sol runner: one strategy over a scenario's calendar and route.
 //!
 //! Each sol: an uplink (if any) starts a plan — the ground localizes the rover if it has the
-//! last drive's data and decides which of the plan's sols drive ([`Planning`]) — then the rover
-//! drives ([`crate::autonav`]) within the sol's budget, then, under onboard strategies, localizes
-//! itself. A fault halts driving until the ground has seen it. Everything random comes from one
+//! last drive's data, and the strategy's [`Policy`] decides which of the plan's sols drive —
+//! then the rover drives ([`crate::autonav`]) within the sol's budget, then, under onboard
+//! strategies, localizes itself. A fault halts driving until the ground has seen it. Everything random comes from one
 //! ChaCha8 stream per (scenario seed, strategy), so a run is reproducible bit for bit.
 
 use std::sync::Arc;
