@@ -113,6 +113,9 @@ pub enum ActivityKind {
     Drive(Drive),
 }
 
+/// Slack below which a drive's computed duration rounds down to the whole second, s.
+const DURATION_ROUNDING_S: f64 = 1e-6;
+
 /// A drive of `length_m` at `rate_m_per_h`, split into segments that run in order so other
 /// activities can interleave (paper 003 Fig. 3).
 ///
@@ -264,11 +267,16 @@ impl Drive {
 
     /// Whole-drive duration, `ceil(3600 × length_m / rate_m_per_h)` s (0 if not finite).
     ///
+    /// A quotient within a microsecond above a whole second counts as that second: a length
+    /// computed as `rate × window / 3600` must give back the window, and the round trip
+    /// through floating point can land one ulp above it (issue 12: at 88.2 m/h a 5241 s
+    /// window came back as 5242 s and made the sol's plan infeasible).
+    ///
     /// # Units
     /// Seconds.
     #[must_use]
     pub fn duration_s(&self) -> i64 {
-        let s = (3600.0 * self.length_m / self.rate_m_per_h).ceil();
+        let s = (3600.0 * self.length_m / self.rate_m_per_h - DURATION_ROUNDING_S).ceil();
         if (0.0..1e12).contains(&s) {
             s as i64
         } else {
