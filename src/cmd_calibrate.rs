@@ -59,11 +59,7 @@ pub fn run(
             let scenario = Scenario::load_within(&a.scenario, budget)?;
             let c = calibrate_vo(&scenario, a.runs)?;
             if a.json {
-                writeln!(
-                    out,
-                    "{}",
-                    serde_json::to_string_pretty(&c).context("serialising the calibration")?
-                )?;
+                print_json(&c, out)?;
             } else {
                 print_vo(&c, out)?;
             }
@@ -73,11 +69,7 @@ pub fn run(
             let scenario = Scenario::load_within(&a.scenario, budget)?;
             let c = calibrate_drive_rate(&scenario, a.runs)?;
             if a.json {
-                writeln!(
-                    out,
-                    "{}",
-                    serde_json::to_string_pretty(&c).context("serialising the calibration")?
-                )?;
+                print_json(&c, out)?;
             } else {
                 writeln!(
                     out,
@@ -103,6 +95,12 @@ pub fn run(
             Ok(())
         }
     }
+}
+
+fn print_json(c: &impl serde::Serialize, out: &mut impl Write) -> anyhow::Result<()> {
+    let text = serde_json::to_string_pretty(c).context("serialising the calibration")?;
+    writeln!(out, "{text}")?;
+    Ok(())
 }
 
 fn print_vo(c: &VoCalibration, out: &mut impl Write) -> std::io::Result<()> {

@@ -68,6 +68,14 @@ impl PerTerrain {
     }
 }
 
+impl std::ops::AddAssign for PerTerrain {
+    fn add_assign(&mut self, other: Self) {
+        self.sand += other.sand;
+        self.soil += other.soil;
+        self.bedrock += other.bedrock;
+    }
+}
+
 /// Rover and AutoNav settings (plain struct; every field has a unit and a default).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct RoverParams {

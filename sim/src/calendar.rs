@@ -90,22 +90,26 @@ impl Calendar {
     }
 }
 
+/// A plain drive sol for unit tests (no pass time, no history).
+#[cfg(test)]
+pub(crate) fn test_sol(sol: u32, uplink: bool, restricted: bool, downlink: bool) -> SolEntry {
+    SolEntry {
+        sol,
+        uplink,
+        restricted,
+        downlink,
+        downlink_lmst: None,
+        drive_allowed: true,
+        historic_planning: None,
+        historic: None,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn sol(sol: u32, uplink: bool, restricted: bool, downlink: bool) -> SolEntry {
-        SolEntry {
-            sol,
-            uplink,
-            restricted,
-            downlink,
-            downlink_lmst: None,
-            drive_allowed: true,
-            historic_planning: None,
-            historic: None,
-        }
-    }
+    use super::test_sol as sol;
 
     /// Sols 402-407 of paper 000 §8: a Wednesday plan (402-403) before a restricted Friday, a
     /// weekend plan (404-406) with no pass on 406.

@@ -209,18 +209,7 @@ mod tests {
     use super::*;
     use crate::time::SolSeconds;
 
-    fn sol(sol: u32, uplink: bool, restricted: bool, downlink: bool) -> SolEntry {
-        SolEntry {
-            sol,
-            uplink,
-            restricted,
-            downlink,
-            downlink_lmst: None,
-            drive_allowed: true,
-            historic_planning: None,
-            historic: None,
-        }
-    }
+    use crate::calendar::test_sol as sol;
 
     /// Paper 000 §8, sols 404-406: a weekend plan uplinked on 404, no pass on 406, restricted.
     fn weekend() -> Calendar {

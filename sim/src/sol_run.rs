@@ -232,9 +232,7 @@ fn merge(total: &mut DriveResult, mut seg: DriveResult) {
     total.d_vo_m += seg.d_vo_m;
     total.d_novo_m += seg.d_novo_m;
     total.drive_time_s += seg.drive_time_s;
-    total.terrain_m.sand += seg.terrain_m.sand;
-    total.terrain_m.soil += seg.terrain_m.soil;
-    total.terrain_m.bedrock += seg.terrain_m.bedrock;
+    total.terrain_m += seg.terrain_m;
     total.plans += seg.plans;
     total.reached_goal |= seg.reached_goal;
     total.fault = total.fault.take().or(seg.fault);

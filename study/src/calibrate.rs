@@ -91,9 +91,7 @@ pub fn calibrate_vo(scenario: &Scenario, runs: u64) -> Result<VoCalibration, Cal
             let mut t = PerTerrain::default();
             let mut novo = 0.0;
             for s in &o.sols {
-                t.sand += s.terrain_m.sand;
-                t.soil += s.terrain_m.soil;
-                t.bedrock += s.terrain_m.bedrock;
+                t += s.terrain_m;
                 novo += s.d_novo_m;
             }
             (t, novo)
@@ -101,9 +99,7 @@ pub fn calibrate_vo(scenario: &Scenario, runs: u64) -> Result<VoCalibration, Cal
         .collect();
     let mut terrain = PerTerrain::default();
     for (t, _) in &per_run {
-        terrain.sand += t.sand;
-        terrain.soil += t.soil;
-        terrain.bedrock += t.bedrock;
+        terrain += *t;
     }
     let total = terrain.total();
     if total.is_nan() || total <= 0.0 {
