@@ -124,9 +124,28 @@ fn readme_defaults_match_the_code() {
         "`operator_margin_m` (1.0)",
         "(default 11:00 / 15:00",
         "`post_drive_imaging_s` (default 1800)",
-        "`max_extension_sols` (default 3)",
     ] {
         assert!(readme.contains(text), "README no longer states {text:?}");
+    }
+    let rules = sim::policy::OperationsRules::default();
+    assert_eq!(rules.max_extension_sols, None);
+    for text in [
+        "`max_extension_sols` (default none".to_string(),
+        format!(
+            "`max_drive_sols_per_plan` (default {})",
+            rules.max_drive_sols_per_plan
+        ),
+        format!(
+            "`extension_plan_sols` (default {})",
+            rules.extension_plan_sols
+        ),
+        format!("`passage_margin_m` (default {})", rules.passage_margin_m),
+        format!(
+            "`preemptive_shortening` (default {})",
+            rules.preemptive_shortening
+        ),
+    ] {
+        assert!(readme.contains(&text), "README no longer states {text:?}");
     }
 }
 
@@ -137,7 +156,7 @@ fn scenario_level_defaults_apply_when_fields_are_omitted() {
     let s = study::Scenario::load(&path).expect("loads");
     assert_eq!(s.campaign.operator_margin_m, 1.0);
     assert_eq!(s.campaign.post_drive_imaging_s, 1800);
-    assert_eq!(s.campaign.max_extension_sols, 3);
+    assert_eq!(s.campaign.rules, sim::policy::OperationsRules::default());
     match &s.campaign.localizer {
         OnboardLocalizer::Statistical(l) => assert_eq!(*l, StatisticalLocalizer::default()),
         OnboardLocalizer::Imagery(_) => panic!("the default localizer is the statistical one"),

@@ -18,7 +18,7 @@ use crate::outcome::{
     LocalizationStep, ScienceTally, SkipReason, SolRecord, Totals,
 };
 use crate::planning_grid::PlanningGrid;
-use crate::policy::{Policy, RunSoFar};
+use crate::policy::{OperationsRules, PassagesAhead, PlanStyle, Policy, RoutePosition, RunSoFar};
 use crate::pose::estimate_error_m;
 use crate::science::{Science, ScienceProgress, SolScience};
 use crate::sol_plan::{SolPlanParams, SolPlanRequest};
@@ -26,7 +26,7 @@ use crate::sol_run::{SolEnv, SolState, chain_durations, execute_sol};
 use crate::strategy::Strategy;
 use crate::time::SolSeconds;
 use crate::uncertainty::UncertaintyModel;
-use crate::widest_path::widest_path;
+use crate::widest_path::widest_path_bottleneck;
 
 /// Everything a campaign run needs (resolved from a scenario file by the binary).
 #[derive(Clone, Debug)]
@@ -50,9 +50,9 @@ pub struct Campaign {
     /// Post-drive imaging before a downlink pass, seconds (a ground-planned drive whose panorama
     /// must make an afternoon pass stops this long before it).
     pub post_drive_imaging_s: u32,
-    /// Extension drives without onboard localization stop after this many sols without a
-    /// localization (paper 000 §8: "not more than three sols").
-    pub max_extension_sols: u32,
+    /// The operations rules every strategy plans under: plan lengths, the optional extension
+    /// cap, the planners' passage margin.
+    pub rules: OperationsRules,
     /// The planning grid, shared by every run of the scenario (and every thread).
     pub grid: Arc<PlanningGrid>,
     /// Each drive sol's activity plan settings.
@@ -70,10 +70,12 @@ pub struct Campaign {
 pub fn leg_clearances(c: &Campaign) -> Vec<LegClearance> {
     let g = &c.grid;
     let window_margin_cells = (150.0 / g.geo.resolution_m_per_px).ceil() as usize;
+    let mut leg_start_m = 0.0;
     (1..c.route.len())
         .map(|i| {
-            let ends = (g.cell_of(c.route[i - 1]), g.cell_of(c.route[i]));
-            let clearance_m = match ends {
+            let (p, q) = (c.route[i - 1], c.route[i]);
+            let ends = (g.cell_of(p), g.cell_of(q));
+            let bottleneck = match ends {
                 (Some(a), Some(b)) => {
                     let (ca, ra, cb, rb) = (a % g.width, a / g.width, b % g.width, b / g.width);
                     let window = (
@@ -82,7 +84,7 @@ pub fn leg_clearances(c: &Campaign) -> Vec<LegClearance> {
                         (ca.max(cb) + window_margin_cells).min(g.width - 1),
                         (ra.max(rb) + window_margin_cells).min(g.height - 1),
                     );
-                    widest_path(
+                    widest_path_bottleneck(
                         g.width,
                         g.height,
                         &g.clearance_m,
@@ -91,14 +93,29 @@ pub fn leg_clearances(c: &Campaign) -> Vec<LegClearance> {
                         b,
                         Some(window),
                     )
-                    .map(f64::from)
                 }
                 _ => None,
             };
-            LegClearance {
+            let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
+            let length_m = dx.hypot(dy);
+            let leg = LegClearance {
                 to_waypoint: i,
-                clearance_m,
-            }
+                clearance_m: bottleneck.map(|b| f64::from(b.clearance)),
+                narrowest_along_route_m: bottleneck.map(|b| {
+                    // Project the narrowest cell onto the leg.
+                    let at = g.center_of(b.narrowest_cell);
+                    let t = if length_m > 0.0 {
+                        (((at[0] - p[0]) * dx + (at[1] - p[1]) * dy) / (length_m * length_m))
+                            .clamp(0.0, 1.0)
+                    } else {
+                        0.0
+                    };
+                    leg_start_m + t * length_m
+                }),
+                narrowest_m: bottleneck.map(|b| g.center_of(b.narrowest_cell)),
+            };
+            leg_start_m += length_m;
+            leg
         })
         .collect()
 }
@@ -124,7 +141,23 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
     let mut sols_since_localization = 0u32;
     let mut goal_sol: Option<u32> = None;
     // Per plan: the sols that may drive and why the others may not.
-    let policy = Policy::new(strategy, c.max_extension_sols);
+    let policy = Policy::new(strategy, c.rules);
+    // What the planners know of the passages, and of the last localization they know of.
+    let waypoint_along_m = route_along_m(&c.route);
+    let ahead = PassagesAhead {
+        legs,
+        waypoint_along_m: &waypoint_along_m,
+        k_vo: c.model.k_vo,
+        arrival_tolerance_m: c.rover.waypoint_tolerance_m + c.rover.step_m,
+    };
+    let mut driven_since_fix_m = 0.0;
+    let mut passage = policy.passage_budget(
+        route_position(&c.route, &waypoint_along_m, &state),
+        state.uncertainty.radius_m(&c.model),
+        &ahead,
+    );
+    // Extension plans lay breadcrumbs through this calendar index (exclusive).
+    let mut breadcrumbs_until = 0usize;
     let mut plan_uplink = cal.sols.first().map_or(0, |s| s.sol);
     let mut plan_drive: Vec<Option<SkipReason>> =
         vec![Some(SkipReason::NoPlanUplinked); cal.sols.len()];
@@ -134,7 +167,6 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
     for (idx, entry) in cal.sols.iter().enumerate() {
         let mut ground_event = None;
         if entry.uplink {
-            plan_uplink = entry.sol;
             let next_uplink = cal.next_uplink_after(idx);
             let ground_knows = last_drive.is_none_or(|s| cal.data_available(s, Some(idx)));
             if ground_knows && halted_by_fault.is_some() {
@@ -150,6 +182,12 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
                 state.clear_path();
                 moved_since_ground_fix = false;
                 sols_since_localization = 0;
+                driven_since_fix_m = 0.0;
+                passage = policy.passage_budget(
+                    route_position(&c.route, &waypoint_along_m, &state),
+                    state.uncertainty.radius_m(&c.model),
+                    &ahead,
+                );
                 let p = state.estimate.position_m;
                 ground_event = Some(LocalizationEvent {
                     kind: LocalizationKind::Ground,
@@ -171,9 +209,19 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
                     }],
                 });
             }
-            let decided = policy.plan(cal, idx, next_uplink, ground_knows);
-            panorama_sol = decided.panorama_sol;
-            plan_drive[idx..idx + decided.reasons.len()].copy_from_slice(&decided.reasons);
+            // An extension plan's breadcrumbs may already cover this sol: the uplink then
+            // needs no new drive plan (paper 000 §8, staffing), unless a fresh ground fix lets
+            // the planners extend past a passage limit.
+            let covered = policy.style == PlanStyle::Extension
+                && next_uplink.unwrap_or(cal.sols.len()) <= breadcrumbs_until
+                && (ground_event.is_none() || policy.localizes_onboard);
+            if !covered {
+                plan_uplink = entry.sol;
+                let decided = policy.plan(cal, idx, next_uplink, ground_knows);
+                panorama_sol = decided.panorama_sol;
+                breadcrumbs_until = idx + decided.reasons.len();
+                plan_drive[idx..breadcrumbs_until].copy_from_slice(&decided.reasons);
+            }
         }
 
         let skip_reason = policy.skip_reason(
@@ -183,6 +231,8 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
                 goal_reached: goal_sol.is_some(),
                 halted_by_fault: halted_by_fault.is_some(),
                 sols_since_localization,
+                passage,
+                driven_since_fix_m,
             },
         );
 
@@ -210,6 +260,7 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
             truth_inside_disc: None,
             reached_goal: false,
             plans: 0,
+            shortened_for_passage: None,
             activity_plan: None,
             path_m: Vec::new(),
         };
@@ -225,7 +276,12 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
                 max_distance_m: None,
                 max_time_s: Some((end - cal.drive_start).max(0) as f64),
             };
-            let (limits, vo) = policy.drive_budget(entry, window);
+            let (mut limits, vo) = policy.drive_budget(entry, window);
+            // The planners' passage limit (paper 000 §2: the drive is shortened).
+            let passage_left_m = passage.map(|p| p.budget_since_fix_m - driven_since_fix_m);
+            if let Some(left) = passage_left_m {
+                limits.max_distance_m = Some(limits.max_distance_m.map_or(left, |m| m.min(left)));
+            }
             let env = SolEnv {
                 c,
                 ctx: &ctx,
@@ -263,6 +319,10 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
             record.plans = result.plans;
             record.path_m = result.path_m;
             record.reached_goal = result.reached_goal;
+            driven_since_fix_m += result.distance_m;
+            if passage_left_m.is_some_and(|left| result.distance_m >= left - 1e-6) {
+                record.shortened_for_passage = passage;
+            }
             if result.fault.is_some() {
                 halted_by_fault = Some(idx);
             }
@@ -286,6 +346,13 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
             if let Some(event) = run.localization {
                 if event.applied {
                     sols_since_localization = 0;
+                    // The rover checks the plan's passage limits from its own fix.
+                    driven_since_fix_m = 0.0;
+                    passage = policy.passage_budget(
+                        route_position(&c.route, &waypoint_along_m, &state),
+                        state.uncertainty.radius_m(&c.model),
+                        &ahead,
+                    );
                 }
                 record.onboard_localization = Some(event);
             }
@@ -312,6 +379,43 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
         seed: c.seed,
         sols: records,
         totals,
+    }
+}
+
+/// Distance along the route of each waypoint, metres (waypoint 0 at 0).
+fn route_along_m(route: &[[f64; 2]]) -> Vec<f64> {
+    let mut along = Vec::with_capacity(route.len());
+    let mut s = 0.0;
+    for (i, w) in route.iter().enumerate() {
+        if i > 0 {
+            s += (w[0] - route[i - 1][0]).hypot(w[1] - route[i - 1][1]);
+        }
+        along.push(s);
+    }
+    along
+}
+
+/// Where the rover's estimate lies along the route: projected onto the leg it drives.
+fn route_position(route: &[[f64; 2]], along: &[f64], state: &RoverState) -> RoutePosition {
+    let next = state.next_waypoint.clamp(1, route.len().max(2) - 1);
+    if route.len() < 2 {
+        return RoutePosition {
+            along_m: 0.0,
+            next_waypoint: next,
+        };
+    }
+    let (p, q) = (route[next - 1], route[next]);
+    let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
+    let len2 = dx * dx + dy * dy;
+    let e = state.estimate.position_m;
+    let t = if len2 > 0.0 {
+        (((e.x - p[0]) * dx + (e.y - p[1]) * dy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    RoutePosition {
+        along_m: along[next - 1] + t * len2.sqrt(),
+        next_waypoint: state.next_waypoint.max(1),
     }
 }
 

@@ -169,7 +169,7 @@ impl Serialize for LocalizationStep {
 
 /// Why a sol did not drive. Displayed, and serialised as a string, as the sol log's sentence
 /// (`route complete`, `extension limit: 3 sols without a localization`, …).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum SkipReason {
     /// The rover already reached the end of the route.
     RouteComplete,
@@ -187,11 +187,37 @@ pub enum SkipReason {
     /// Ground planning: this sol's post-drive data would reach Earth after the next plan is
     /// made.
     DataTooLateForNextPlan,
-    /// Extension drives stop after this many sols without a localization.
+    /// Extension drives stop after this many sols without a localization (the scenario's
+    /// optional `max_extension_sols` cap).
     ExtensionLimit {
         /// Sols driven since the last localization (the scenario's `max_extension_sols`).
         sols_without_localization: u32,
     },
+    /// The plan's commanded drive sols are used up (`max_drive_sols_per_plan`; extension
+    /// plans lay breadcrumbs instead).
+    PlanDriveSolsUsed {
+        /// Drive sols the plan commanded.
+        drive_sols: u32,
+    },
+    /// The planners' prediction of the uncertainty radius, from the last localization they
+    /// know of, closes a passage ahead before the rover can be localized again: the plan
+    /// stops short of it (paper 000 §2, "pre-emptively shortened"; for extension drives, the
+    /// limit of paper 000 §8).
+    PassageAhead(PassageLimit),
+}
+
+/// A passage the planners' predicted uncertainty would close: why a drive was shortened or
+/// skipped (see [`crate::policy`]).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct PassageLimit {
+    /// The leg's destination waypoint (the passage lies on the leg into it).
+    pub to_waypoint: usize,
+    /// The passage's clearance, metres: a path through it exists while r is below this.
+    pub clearance_m: f64,
+    /// The radius the planners predicted at the passage, metres.
+    pub predicted_r_m: f64,
+    /// Odometry the rover may drive from the last localization the planners know of, metres.
+    pub budget_since_fix_m: f64,
 }
 
 impl fmt::Display for SkipReason {
@@ -213,6 +239,17 @@ impl fmt::Display for SkipReason {
             } => {
                 return f.pad(&format!(
                     "extension limit: {sols_without_localization} sols without a localization"
+                ));
+            }
+            SkipReason::PlanDriveSolsUsed { drive_sols } => {
+                return f.pad(&format!(
+                    "the plan's {drive_sols} commanded drive sols are used"
+                ));
+            }
+            SkipReason::PassageAhead(p) => {
+                return f.pad(&format!(
+                    "predicted r {:.1} m would close the passage to waypoint {} (clearance {:.1} m) before a localization",
+                    p.predicted_r_m, p.to_waypoint, p.clearance_m
                 ));
             }
         };
@@ -322,6 +359,10 @@ pub struct SolRecord {
     pub reached_goal: bool,
     /// Number of path plans (A* runs) this sol.
     pub plans: u32,
+    /// The planners shortened this drive so their predicted uncertainty would not close the
+    /// passage ahead (paper 000 §2): the limit it ran into.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shortened_for_passage: Option<PassageLimit>,
     /// The sol's activity plan and timeline (drive sols only).
     pub activity_plan: Option<crate::sol_plan::SolPlan>,
     /// Estimated positions along the drive, map metres (exported as GeoJSON, not in the JSON).
@@ -381,6 +422,12 @@ pub struct LegClearance {
     /// Largest uncertainty radius at which a path along this leg exists, metres
     /// (`None`: no path even at zero uncertainty).
     pub clearance_m: Option<f64>,
+    /// Where the leg's narrowest point lies, as the distance along the route from waypoint 0 of
+    /// its projection onto the leg, metres: the rover must keep its uncertainty below
+    /// `clearance_m` until it is past this point (`None` with `clearance_m`).
+    pub narrowest_along_route_m: Option<f64>,
+    /// The narrowest point itself, map metres (`None` with `clearance_m`).
+    pub narrowest_m: Option<[f64; 2]>,
 }
 
 /// One strategy's run over a scenario.

@@ -4,10 +4,14 @@
 //! | strategy | plans ([`PlanStyle`]) | skips or cuts a drive when | localizes |
 //! |---|---|---|---|
 //! | `replay` | the record's sols | the record did not drive | ground, when it has the data |
-//! | `ground` | ground-in-the-loop | the ground does not know where the rover is; the sol's panorama would reach Earth after the next plan is built (skipped); the plan's last drive must end before its afternoon pass to downlink the panorama (cut) | ground, at each uplink that has the data |
-//! | `onboard` | self-localized: every sol the calendar allows, the previous plan's path continued when the ground has not seen the last drive | never for the panorama | onboard after every drive sol; ground when it has the data |
-//! | `extension` | opportunistic extension: breadcrumbs at every uplink | after `max_extension_sols` sols without a localization | ground, when it has the data |
-//! | `extension+onboard` | opportunistic extension | never for localization | onboard after every drive sol; ground when it has the data |
+//! | `ground` | ground-in-the-loop, at most `max_drive_sols_per_plan` drive sols a plan | the ground does not know where the rover is; the sol's panorama would reach Earth after the next plan is built (skipped); the plan's last drive must end before its afternoon pass to downlink the panorama (cut); the predicted radius would close a passage ahead (shortened, paper 000 §2) | ground, at each uplink that has the data |
+//! | `onboard` | self-localized: every sol the calendar allows, at most `max_drive_sols_per_plan` a plan, the previous plan's path continued when the ground has not seen the last drive | never for the panorama; the passage limit only binds after a rejected onboard localization | onboard after every drive sol; ground when it has the data |
+//! | `extension` | opportunistic extension: breadcrumbs for `extension_plan_sols` sols, or over a gap without uplinks | the predicted radius from the last ground fix would close a passage ahead: the extension limit emerges; the optional `max_extension_sols` cap | ground, when it has the data |
+//! | `extension+onboard` | opportunistic extension | never for localization (as `onboard` for the passage limit) | onboard after every drive sol; ground when it has the data |
+//!
+//! The passage limit ([`Policy::passage_budget`]) is one computation for all of them: the
+//! odometry the rover may drive from the last localization before the radius, growing at the
+//! VO rate along the route, reaches the clearance of a passage still ahead on its leg.
 //!
 //! Every strategy stops after the route's end, on the calendar's no-drive sols (the replay
 //! follows its record instead), and after a fault until the ground has seen it.
@@ -17,7 +21,7 @@
 
 use crate::autonav::{DriveLimits, VoSource};
 use crate::calendar::{Calendar, SolEntry};
-use crate::outcome::SkipReason;
+use crate::outcome::{LegClearance, PassageLimit, SkipReason};
 use crate::strategy::Strategy;
 
 /// How a strategy's plans choose their drive sols.
@@ -39,8 +43,43 @@ pub enum PlanStyle {
     Extension,
 }
 
+/// The operations rules every strategy plans under (the scenario's `[operations]`).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct OperationsRules {
+    /// An optional cap on extension drives without a localization, sols (`extension` only;
+    /// default none: the limit emerges from the passages ahead).
+    pub max_extension_sols: Option<u32>,
+    /// Drive sols one ground or self-localized plan commands at most (default 3, historic
+    /// practice: the longest plans of the record drive three sols, e.g. 383-385 and the
+    /// weekend plans).
+    pub max_drive_sols_per_plan: u32,
+    /// Sols of breadcrumbs one extension plan lays (default 3: paper 000 §8, "if the operations
+    /// team had planned the entire 407-409 drive in just the 407 uplink"); an uplink inside
+    /// them needs no new drive plan.
+    pub extension_plan_sols: u32,
+    /// Planners shorten a drive when the predicted radius comes within this of a passage's
+    /// clearance, metres (default 0: shortened when the prediction closes it).
+    pub passage_margin_m: f64,
+    /// Whether plans stop short of a passage the predicted radius would close (default true:
+    /// paper 000 §2's pre-emptive shortening, and the extension limit of §8). Off, every
+    /// strategy drives into such passages and meets the `NO_PATH` faults that follow.
+    pub preemptive_shortening: bool,
+}
+
+impl Default for OperationsRules {
+    fn default() -> Self {
+        Self {
+            max_extension_sols: None,
+            max_drive_sols_per_plan: 3,
+            extension_plan_sols: 3,
+            passage_margin_m: 0.0,
+            preemptive_shortening: true,
+        }
+    }
+}
+
 /// A strategy's decisions.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Policy {
     /// The strategy.
     pub strategy: Strategy,
@@ -48,8 +87,13 @@ pub struct Policy {
     pub style: PlanStyle,
     /// Whether the rover localizes itself after every drive sol.
     pub localizes_onboard: bool,
-    /// Extension drives without a localization stop after this many sols (`extension` only).
-    pub extension_cap_sols: Option<u32>,
+    /// Whether drives stop before a passage the predicted uncertainty would close (every
+    /// strategy but the replay). For onboard strategies the rover checks the plan's passage
+    /// limits against its own last applied localization, so a rejected localization stops it
+    /// short instead of driving into a `NO_PATH`.
+    pub plans_around_passages: bool,
+    /// The rules it plans under.
+    pub rules: OperationsRules,
 }
 
 /// The drive sols of one plan.
@@ -64,7 +108,7 @@ pub struct PlanDrives {
 }
 
 /// What a sol's skip decision needs to know of the run so far.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RunSoFar {
     /// The end of the route was reached.
     pub goal_reached: bool,
@@ -72,25 +116,68 @@ pub struct RunSoFar {
     pub halted_by_fault: bool,
     /// Sols driven since the last applied localization (ground or onboard).
     pub sols_since_localization: u32,
+    /// The passage limit of the current plan ([`Policy::passage_budget`]), if one binds.
+    pub passage: Option<PassageLimit>,
+    /// Odometry since the last localization the planners know of, metres.
+    pub driven_since_fix_m: f64,
+}
+
+/// A drive shorter than this is not worth commanding, metres (one AutoNav step of the
+/// default 2 m).
+const MIN_DRIVE_M: f64 = 2.0;
+
+/// Where the rover was on the route, as the planners know it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RoutePosition {
+    /// Distance along the route from waypoint 0, metres.
+    pub along_m: f64,
+    /// The waypoint the rover drives to next.
+    pub next_waypoint: usize,
+}
+
+/// The route's passages as the planners see them.
+#[derive(Clone, Copy, Debug)]
+pub struct PassagesAhead<'a> {
+    /// Per leg: its clearance and where its narrowest point is.
+    pub legs: &'a [LegClearance],
+    /// Distance along the route of each waypoint, metres (waypoint 0 at 0).
+    pub waypoint_along_m: &'a [f64],
+    /// The predicted growth, metres of radius per metre driven (VO working).
+    pub k_vo: f64,
+    /// The rover takes a waypoint as reached this far before it, plus a step, metres.
+    pub arrival_tolerance_m: f64,
 }
 
 impl Policy {
-    /// The policy of `strategy`; `max_extension_sols` caps extension drives without
-    /// localization.
+    /// The policy of `strategy` under `rules`.
     #[must_use]
-    pub fn new(strategy: Strategy, max_extension_sols: u32) -> Self {
-        let (style, cap) = match strategy {
-            Strategy::Replay => (PlanStyle::Record, None),
-            Strategy::Ground => (PlanStyle::GroundInTheLoop, None),
-            Strategy::Onboard => (PlanStyle::SelfLocalized, None),
-            Strategy::Extension => (PlanStyle::Extension, Some(max_extension_sols)),
-            Strategy::ExtensionOnboard => (PlanStyle::Extension, None),
+    pub fn new(strategy: Strategy, rules: OperationsRules) -> Self {
+        let style = match strategy {
+            Strategy::Replay => PlanStyle::Record,
+            Strategy::Ground => PlanStyle::GroundInTheLoop,
+            Strategy::Onboard => PlanStyle::SelfLocalized,
+            Strategy::Extension | Strategy::ExtensionOnboard => PlanStyle::Extension,
         };
+        let localizes_onboard = strategy.onboard_localization();
         Self {
             strategy,
             style,
-            localizes_onboard: strategy.onboard_localization(),
-            extension_cap_sols: cap,
+            localizes_onboard,
+            plans_around_passages: style != PlanStyle::Record && rules.preemptive_shortening,
+            rules,
+        }
+    }
+
+    /// Sols of the calendar one plan uplinked at `first` covers with commanded drives or
+    /// breadcrumbs, up to the next uplink: extension plans lay `extension_plan_sols` sols of
+    /// breadcrumbs, or enough to reach the next uplink (a conjunction plan covers the whole
+    /// gap); other plans command at most `max_drive_sols_per_plan` drive sols.
+    #[must_use]
+    pub fn breadcrumb_sols(&self, first: usize, next_uplink: Option<usize>, len: usize) -> usize {
+        let to_next = next_uplink.unwrap_or(len) - first;
+        match self.style {
+            PlanStyle::Extension => to_next.max(self.rules.extension_plan_sols as usize),
+            _ => to_next,
         }
     }
 
@@ -117,8 +204,16 @@ impl Policy {
                     .collect(),
                 panorama_sol: None,
             },
-            PlanStyle::SelfLocalized | PlanStyle::Extension => PlanDrives {
-                reasons: vec![None; span.len()],
+            PlanStyle::Extension => PlanDrives {
+                reasons: vec![
+                    None;
+                    self.breadcrumb_sols(first, next_uplink, cal.sols.len())
+                        .min(cal.sols.len() - first)
+                ],
+                panorama_sol: None,
+            },
+            PlanStyle::SelfLocalized => PlanDrives {
+                reasons: self.cap_drive_sols(cal, span.clone(), vec![None; span.len()]),
                 panorama_sol: None,
             },
             PlanStyle::GroundInTheLoop if !ground_knows => PlanDrives {
@@ -132,20 +227,120 @@ impl Policy {
                     .clone()
                     .rev()
                     .find(|&j| cal.sols[j].drive_allowed && cal.data_available(j, next_uplink));
+                let reasons = span
+                    .clone()
+                    .map(|j| {
+                        if last.is_some_and(|l| j <= l) {
+                            None
+                        } else {
+                            Some(SkipReason::DataTooLateForNextPlan)
+                        }
+                    })
+                    .collect();
+                let reasons = self.cap_drive_sols(cal, span.clone(), reasons);
+                // The panorama goes down after the plan's last commanded drive.
+                let panorama_sol = span
+                    .clone()
+                    .zip(&reasons)
+                    .rev()
+                    .find(|(j, r)| r.is_none() && cal.sols[*j].drive_allowed)
+                    .map(|(j, _)| j);
                 PlanDrives {
-                    reasons: span
-                        .map(|j| {
-                            if last.is_some_and(|l| j <= l) {
-                                None
-                            } else {
-                                Some(SkipReason::DataTooLateForNextPlan)
-                            }
-                        })
-                        .collect(),
-                    panorama_sol: last,
+                    reasons,
+                    panorama_sol,
                 }
             }
         }
+    }
+
+    /// Keep the first `max_drive_sols_per_plan` sols of `span` that may drive; later ones skip.
+    fn cap_drive_sols(
+        &self,
+        cal: &Calendar,
+        span: std::ops::Range<usize>,
+        mut reasons: Vec<Option<SkipReason>>,
+    ) -> Vec<Option<SkipReason>> {
+        let cap = self.rules.max_drive_sols_per_plan;
+        let mut commanded = 0u32;
+        for (j, reason) in span.zip(reasons.iter_mut()) {
+            if reason.is_some() || !cal.sols[j].drive_allowed {
+                continue;
+            }
+            if commanded >= cap {
+                *reason = Some(SkipReason::PlanDriveSolsUsed { drive_sols: cap });
+            } else {
+                commanded += 1;
+            }
+        }
+        reasons
+    }
+
+    /// How far the rover may drive, in odometry from the last localization the planners know
+    /// of, before their predicted uncertainty closes a passage ahead (paper 000 §2: drives are
+    /// "pre-emptively shortened"; §8: extension plans "fundamentally limited by position
+    /// uncertainty growth"). `None` when no passage ahead binds, or the policy does not plan
+    /// around passages.
+    ///
+    /// The prediction: r grows by `k_vo` (VO working) per metre of route from `fix` — the
+    /// route position of that localization, `fix_r_m` its radius. A passage of clearance `c`
+    /// at route position `s` is passable if `r(s) < c − passage_margin_m`. Otherwise the rover
+    /// must stop while `r < c − margin`, or before it enters the passage's leg (AutoNav plans
+    /// to the next waypoint, so a closed passage anywhere on the leg ahead is a `NO_PATH`),
+    /// whichever is further. Because the radius depends only on odometry since the fix, the
+    /// limit holds wherever along its commanded path the rover ended a sol the planners have
+    /// not seen: the plan is robust to where the rover is (paper 000 §8).
+    #[must_use]
+    pub fn passage_budget(
+        &self,
+        fix: RoutePosition,
+        fix_r_m: f64,
+        ahead: &PassagesAhead<'_>,
+    ) -> Option<PassageLimit> {
+        if !self.plans_around_passages {
+            return None;
+        }
+        let margin = self.rules.passage_margin_m;
+        let mut best: Option<PassageLimit> = None;
+        for leg in ahead
+            .legs
+            .iter()
+            .filter(|l| l.to_waypoint >= fix.next_waypoint)
+        {
+            let leg_start = ahead.waypoint_along_m[leg.to_waypoint - 1];
+            // Entering this leg's waypoint target comes after the budget already found.
+            let enter_budget = leg_start - fix.along_m - ahead.arrival_tolerance_m;
+            if best.is_some_and(|b| enter_budget >= b.budget_since_fix_m) {
+                break;
+            }
+            let (c, s) = match (leg.clearance_m, leg.narrowest_along_route_m) {
+                (Some(c), Some(s)) => (c, s),
+                // No path at all: stop before the leg.
+                _ => (0.0, leg_start),
+            };
+            if s < fix.along_m {
+                continue;
+            }
+            let predicted_r_m = fix_r_m + ahead.k_vo * (s - fix.along_m);
+            if predicted_r_m < c - margin {
+                continue;
+            }
+            let inside = if leg.to_waypoint > fix.next_waypoint {
+                enter_budget
+            } else {
+                f64::NEG_INFINITY
+            };
+            let within_r = (c - margin - fix_r_m) / ahead.k_vo;
+            let budget = inside.max(within_r).max(0.0);
+            if best.is_none_or(|b| budget < b.budget_since_fix_m) {
+                best = Some(PassageLimit {
+                    to_waypoint: leg.to_waypoint,
+                    clearance_m: c,
+                    predicted_r_m,
+                    budget_since_fix_m: budget,
+                });
+            }
+        }
+        best
     }
 
     /// Why the rover does not drive on `entry` (`None`: it drives), given the plan's own
@@ -167,12 +362,16 @@ impl Policy {
             Some(SkipReason::HaltedAfterFault)
         } else if plan_reason.is_some() {
             plan_reason
+        } else if let Some(cap) = self.rules.max_extension_sols.filter(|&cap| {
+            self.strategy == Strategy::Extension && run.sols_since_localization >= cap
+        }) {
+            Some(SkipReason::ExtensionLimit {
+                sols_without_localization: cap,
+            })
         } else {
-            self.extension_cap_sols
-                .filter(|&cap| run.sols_since_localization >= cap)
-                .map(|cap| SkipReason::ExtensionLimit {
-                    sols_without_localization: cap,
-                })
+            run.passage
+                .filter(|p| p.budget_since_fix_m - run.driven_since_fix_m < MIN_DRIVE_M)
+                .map(SkipReason::PassageAhead)
         }
     }
 
@@ -229,7 +428,9 @@ mod tests {
     fn ground_skips_the_sol_whose_panorama_cannot_reach_earth_and_onboard_does_not() {
         let cal = weekend();
         let next = cal.next_uplink_after(0);
-        let ground = Policy::new(Strategy::Ground, 3).plan(&cal, 0, next, true);
+        let capped = OperationsRules::default();
+        let ground =
+            Policy::new(Strategy::Ground, OperationsRules::default()).plan(&cal, 0, next, true);
         assert_eq!(
             ground.reasons,
             vec![None, None, Some(SkipReason::DataTooLateForNextPlan)]
@@ -240,12 +441,13 @@ mod tests {
             Strategy::ExtensionOnboard,
             Strategy::Extension,
         ] {
-            let p = Policy::new(s, 3).plan(&cal, 0, next, false);
+            let p = Policy::new(s, capped).plan(&cal, 0, next, false);
             assert_eq!(p.reasons, vec![None; 3], "{s}");
             assert_eq!(p.panorama_sol, None, "{s}");
         }
         // Without the last drive's data the ground cannot plan at all.
-        let blind = Policy::new(Strategy::Ground, 3).plan(&cal, 0, next, false);
+        let blind =
+            Policy::new(Strategy::Ground, OperationsRules::default()).plan(&cal, 0, next, false);
         assert_eq!(
             blind.reasons,
             vec![Some(SkipReason::AwaitingPostDriveData); 3]
@@ -254,16 +456,126 @@ mod tests {
 
     #[test]
     fn only_extension_without_onboard_localization_is_capped() {
+        let capped = OperationsRules {
+            max_extension_sols: Some(3),
+            ..OperationsRules::default()
+        };
         let entry = sol(408, false, true, true);
         let run = RunSoFar {
             goal_reached: false,
             halted_by_fault: false,
             sols_since_localization: 3,
+            passage: None,
+            driven_since_fix_m: 0.0,
         };
         for s in Strategy::ALL {
-            let got = Policy::new(s, 3).skip_reason(&entry, None, run);
+            let got = Policy::new(s, capped).skip_reason(&entry, None, run);
             let capped = s == Strategy::Extension;
             assert_eq!(got.is_some(), capped, "{s}: {got:?}");
         }
+    }
+
+    /// A conjunction: one uplink, then 21 sols without one. Plans that are not extension plans
+    /// command at most `max_drive_sols_per_plan` drives; extension breadcrumbs cover the gap.
+    #[test]
+    fn a_conjunction_is_driven_through_only_by_extension_plans() {
+        let mut sols = vec![sol(500, true, true, true)];
+        sols.extend((501..522).map(|s| sol(s, false, true, false)));
+        sols.push(sol(522, true, true, true));
+        let cal = Calendar {
+            sols,
+            drive_start: SolSeconds(0),
+            drive_end: SolSeconds(1),
+        };
+        let next = cal.next_uplink_after(0);
+        let rules = OperationsRules::default();
+        // Onboard drives the plan's three sols; ground only the first, whose data reaches
+        // Earth before the next plan (no pass in the gap).
+        for (s, want) in [(Strategy::Onboard, 3), (Strategy::Ground, 1)] {
+            let p = Policy::new(s, rules).plan(&cal, 0, next, true);
+            let drives = p.reasons.iter().filter(|r| r.is_none()).count();
+            assert_eq!(drives, want, "{s}: {:?}", p.reasons);
+        }
+        let p = Policy::new(Strategy::ExtensionOnboard, rules).plan(&cal, 0, next, false);
+        assert_eq!(p.reasons, vec![None; 22]);
+    }
+
+    /// Passage-aware planning on a straight route: waypoints every 100 m, one passage of
+    /// clearance 12 m at 450 m (in the leg into waypoint 5). r grows 5 % per metre.
+    #[test]
+    fn the_passage_budget_stops_before_a_passage_the_prediction_closes() {
+        let along: Vec<f64> = (0..8).map(|i| f64::from(i) * 100.0).collect();
+        let legs: Vec<LegClearance> = (1..8)
+            .map(|i| LegClearance {
+                to_waypoint: i,
+                clearance_m: Some(if i == 5 { 12.0 } else { 100.0 }),
+                narrowest_along_route_m: Some(if i == 5 { 450.0 } else { along[i] - 50.0 }),
+                narrowest_m: None,
+            })
+            .collect();
+        let ahead = PassagesAhead {
+            legs: &legs,
+            waypoint_along_m: &along,
+            k_vo: 0.05,
+            arrival_tolerance_m: 4.0,
+        };
+        let ground = Policy::new(Strategy::Ground, OperationsRules::default());
+        // From a fix at 0 m, r at the passage would be 22.5 m > 12 m: stop before entering the
+        // leg into waypoint 5 (400 m − 4 m), which is further than where r reaches 12 m (240 m).
+        let at0 = RoutePosition {
+            along_m: 0.0,
+            next_waypoint: 1,
+        };
+        let b = ground
+            .passage_budget(at0, 0.0, &ahead)
+            .expect("the passage binds");
+        assert_eq!(b.to_waypoint, 5);
+        assert!((b.budget_since_fix_m - 396.0).abs() < 1e-9, "{b:?}");
+        assert!((b.predicted_r_m - 22.5).abs() < 1e-9);
+        // From a fix at 300 m, r at the passage is 7.5 m: passable, nothing binds.
+        let at300 = RoutePosition {
+            along_m: 300.0,
+            next_waypoint: 4,
+        };
+        assert_eq!(ground.passage_budget(at300, 0.0, &ahead), None);
+        // From inside the passage's leg with r = 11 m (12.5 m predicted at the passage), only
+        // 20 m more keep r below 12 m.
+        let at420 = RoutePosition {
+            along_m: 420.0,
+            next_waypoint: 5,
+        };
+        let b = ground
+            .passage_budget(at420, 11.0, &ahead)
+            .expect("the passage binds");
+        assert!((b.budget_since_fix_m - 20.0).abs() < 1e-9, "{b:?}");
+        // A 5 m margin makes the 300 m fix bind too (7.5 m ≥ 12 − 5): the rover may drive on
+        // while r < 7 m, 140 m, which is past the start of the passage's leg (96 m).
+        let wary = Policy::new(
+            Strategy::Ground,
+            OperationsRules {
+                passage_margin_m: 5.0,
+                ..OperationsRules::default()
+            },
+        );
+        let b = wary
+            .passage_budget(at300, 0.0, &ahead)
+            .expect("the passage binds");
+        assert!((b.budget_since_fix_m - 140.0).abs() < 1e-9, "{b:?}");
+        // The replay follows its record instead.
+        let replay = Policy::new(Strategy::Replay, OperationsRules::default());
+        assert_eq!(replay.passage_budget(at0, 0.0, &ahead), None);
+        // The budget used up: the sol is skipped with the passage as the reason.
+        let run = RunSoFar {
+            goal_reached: false,
+            halted_by_fault: false,
+            sols_since_localization: 2,
+            passage: ground.passage_budget(at0, 0.0, &ahead),
+            driven_since_fix_m: 395.0,
+        };
+        let why = ground.skip_reason(&sol(410, true, true, true), None, run);
+        assert!(
+            matches!(why, Some(SkipReason::PassageAhead(p)) if p.to_waypoint == 5),
+            "{why:?}"
+        );
     }
 }

@@ -20,8 +20,8 @@
 //! Dijkstra's algorithm in the (max, min) semiring: a max-heap of bottleneck values, each cell's
 //! value the best bottleneck known so far, relaxed as `min(value(cur), clearance(nb))`. Values
 //! only decrease along a path, so the first time a cell is popped its value is final; the
-//! search stops when the goal is popped. Ties are popped in increasing cell index, so the work
-//! done is deterministic (the returned value is unique anyway).
+//! search stops when the goal is popped. Ties are popped roomiest cell first, then in increasing
+//! cell index, so the work done is deterministic (the returned value is unique anyway).
 //!
 //! ## References
 //! - M. Pollack, "The Maximum Capacity Through a Network", *Operations Research* 8(5) (1960)
@@ -36,6 +36,9 @@ use std::collections::BinaryHeap;
 #[derive(Debug, Clone, Copy)]
 struct Open {
     value: f32,
+    /// The cell's own clearance: among equal bottlenecks the roomier cell pops first, so the
+    /// search tree (and the bottleneck's reported place) does not hug obstacles past a pinch.
+    own: f32,
     local: u32,
 }
 
@@ -54,12 +57,23 @@ impl PartialOrd for Open {
 }
 
 impl Ord for Open {
-    /// Larger value pops first, then lower index.
+    /// Larger value pops first, then the roomier cell, then lower index.
     fn cmp(&self, other: &Self) -> Ordering {
         self.value
             .total_cmp(&other.value)
+            .then_with(|| self.own.total_cmp(&other.own))
             .then_with(|| other.local.cmp(&self.local))
     }
+}
+
+/// A widest path's bottleneck: its value and where it is.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bottleneck {
+    /// The largest bottleneck clearance over all paths (see [`widest_path`]).
+    pub clearance: f32,
+    /// The cell (row-major index) nearest the goal, along one widest path, that sets the
+    /// bottleneck: past it, the rest of that path to the goal stays open at a larger radius.
+    pub narrowest_cell: usize,
 }
 
 /// The largest bottleneck clearance over all 8-connected paths from `start` to `goal`, or
@@ -90,6 +104,27 @@ pub fn widest_path(
     goal: usize,
     window: Option<(usize, usize, usize, usize)>,
 ) -> Option<f32> {
+    widest_path_bottleneck(width, height, clearance, passable, start, goal, window)
+        .map(|b| b.clearance)
+}
+
+/// [`widest_path`] with where its bottleneck lies: the cell nearest `goal`, along one widest
+/// path, whose clearance (or a diagonal move's corner clearance) equals the bottleneck. A rover
+/// on that path must keep its uncertainty radius below the value until it is past that cell
+/// (the passage-aware planning of [`crate::policy`] uses it).
+///
+/// # Panics
+/// As [`widest_path`].
+#[must_use]
+pub fn widest_path_bottleneck(
+    width: usize,
+    height: usize,
+    clearance: &[f32],
+    passable: impl Fn(usize) -> bool,
+    start: usize,
+    goal: usize,
+    window: Option<(usize, usize, usize, usize)>,
+) -> Option<Bottleneck> {
     assert_eq!(
         clearance.len(),
         width * height,
@@ -129,6 +164,10 @@ pub fn widest_path(
     const CLOSED: u8 = 4;
     let mut state = vec![UNSEEN; win_w * win_h];
     let mut best = vec![f32::NEG_INFINITY; win_w * win_h];
+    // How each reached cell was reached: its parent (window-local) and the move's own
+    // bottleneck (the cell's clearance, or a diagonal's corner clearance if lower).
+    let mut parent = vec![u32::MAX; win_w * win_h];
+    let mut via = vec![f32::INFINITY; win_w * win_h];
     // Passability is asked at most once per cell.
     let probe = |state: &mut [u8], l: usize| -> bool {
         if state[l] == UNSEEN {
@@ -142,16 +181,25 @@ pub fn widest_path(
     state[start_l] = REACHED;
     heap.push(Open {
         value: clearance[start],
+        own: clearance[start],
         local: start_l as u32,
     });
-    while let Some(Open { value, local }) = heap.pop() {
+    while let Some(Open { value, local, .. }) = heap.pop() {
         let cur = local as usize;
         if state[cur] == CLOSED {
             continue;
         }
         state[cur] = CLOSED;
         if cur == goal_l {
-            return Some(value);
+            // Walk back from the goal to the first move (or the start) that sets the value.
+            let mut at = cur;
+            while parent[at] != u32::MAX && via[at] > value {
+                at = parent[at] as usize;
+            }
+            return Some(Bottleneck {
+                clearance: value,
+                narrowest_cell: global(at),
+            });
         }
         let (r, c) = (cur / win_w, cur % win_w);
         let up = r > 0 && probe(&mut state, cur - win_w);
@@ -191,12 +239,16 @@ pub fn widest_path(
             if !ok || !probe(&mut state, nb) || state[nb] == CLOSED {
                 continue;
             }
-            let v = value.min(clearance[global(nb)]).min(corner);
+            let step = clearance[global(nb)].min(corner);
+            let v = value.min(step);
             if state[nb] == USABLE || v > best[nb] {
                 state[nb] = REACHED;
                 best[nb] = v;
+                parent[nb] = cur as u32;
+                via[nb] = step;
                 heap.push(Open {
                     value: v,
+                    own: clearance[global(nb)],
                     local: nb as u32,
                 });
             }
@@ -355,6 +407,31 @@ mod tests {
             widest_path(3, 2, &clearance, |_| true, 0, 2, None),
             Some(2.0)
         );
+    }
+
+    #[test]
+    fn bottleneck_is_the_narrowest_cell_nearest_the_goal() {
+        // Two equal pinches (cells 2 and 5); the one nearer the goal is reported, so a rover
+        // must keep r below 1.5 until it is past cell 5.
+        let clearance = [3.0, 2.0, 1.5, 2.5, 4.0, 1.5, 3.0, 3.0];
+        let b = widest_path_bottleneck(8, 1, &clearance, |_| true, 0, 7, None).expect("a path");
+        assert_eq!((b.clearance, b.narrowest_cell), (1.5, 5));
+        // Reversed, the pinch nearer the new goal (cell 0's side) is cell 2.
+        let b = widest_path_bottleneck(8, 1, &clearance, |_| true, 7, 0, None).expect("a path");
+        assert_eq!((b.clearance, b.narrowest_cell), (1.5, 2));
+        // The start itself may be the bottleneck.
+        let clearance = [0.5, 2.0, 3.0];
+        let b = widest_path_bottleneck(3, 1, &clearance, |_| true, 0, 2, None).expect("a path");
+        assert_eq!((b.clearance, b.narrowest_cell), (0.5, 0));
+        // A pinch in a 2-D corridor: a 5×3 grid whose middle column narrows to one cell.
+        #[rustfmt::skip]
+        let clearance = [
+            4.0, 4.0, 0.2, 4.0, 4.0,
+            4.0, 4.0, 1.0, 4.0, 4.0,
+            4.0, 4.0, 0.2, 4.0, 4.0,
+        ];
+        let b = widest_path_bottleneck(5, 3, &clearance, |_| true, 5, 9, None).expect("a path");
+        assert_eq!((b.clearance, b.narrowest_cell), (1.0, 7));
     }
 
     #[test]

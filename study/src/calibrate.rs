@@ -172,6 +172,9 @@ pub struct DriveRateCalibration {
 fn ground_m_per_drive_sol(scenario: &Scenario, rate_m_per_h: f64, runs: u64) -> f64 {
     let mut s = scenario.clone();
     s.campaign.rover.drive_rate_m_per_h = rate_m_per_h;
+    // The rate is AutoNav's: measured with no drive shortened before a passage (the record
+    // has none; the passages of a map are placed where the record met them early in a sol).
+    s.campaign.rules.preemptive_shortening = false;
     let per_run: Vec<(f64, u32)> = (0..runs)
         .into_par_iter()
         .map(|r| {
@@ -187,7 +190,8 @@ fn ground_m_per_drive_sol(scenario: &Scenario, rate_m_per_h: f64, runs: u64) -> 
 /// Solve the AutoNav drive rate at which the re-simulated ground strategy drives as many metres
 /// per drive sol as the record (paper 000 §8's rapid traverse: 5108 m in 23 drive sols,
 /// 222 m). Bisection on the rate between 10 % and 300 % of the scenario's, 40 steps; each step
-/// runs `runs` ground re-simulations (run indices 0..runs, common to every step).
+/// runs `runs` ground re-simulations (run indices 0..runs, common to every step), with
+/// pre-emptive shortening off: no historic drive was shortened for a passage.
 ///
 /// # Errors
 /// [`CalibrationError`] when the scenario has no record or the ground never drives.

@@ -26,6 +26,8 @@
 //! no_path_rate = [0.0, 0.10]       # the rate over the runs within [low, high]; also
 //!                                  # fault_rate, truth_outside_disc_rate, goal_reached_rate
 //! paired = { baseline = "ground", figure = "sols_to_goal", mean = [-2.0, -0.5] }
+//!                                  # or the share of runs with a difference ≤ at_most:
+//!                                  # paired = { …, at_most = -1, share = [0.95, 1.0] }
 //!
 //! [[expect]]                       # the disc's coverage: drive sols ending with the truth
 //! strategy = "ground"              # inside it, pooled over the runs
@@ -86,7 +88,9 @@ pub struct RawExpectation {
 struct RawPaired {
     baseline: String,
     figure: String,
-    mean: [f64; 2],
+    mean: Option<[f64; 2]>,
+    at_most: Option<f64>,
+    share: Option<[f64; 2]>,
 }
 
 /// Most runs a statistical expectation may ask for.
@@ -123,6 +127,20 @@ pub enum StatCheck {
         /// Bounds.
         hi: f64,
     },
+    /// The share of paired runs with (strategy − baseline) on `figure` at most `at_most`
+    /// within `[lo, hi]` (for instance the goal at least one sol sooner in ≥ 95 % of runs).
+    PairedShare {
+        /// The other strategy.
+        baseline: Strategy,
+        /// The figure.
+        figure: Figure,
+        /// The difference counted.
+        at_most: f64,
+        /// Bounds (fractions).
+        lo: f64,
+        /// Bounds (fractions).
+        hi: f64,
+    },
 }
 
 /// A validated `[[expect]]` entry that holds over a sweep (`runs = N`).
@@ -148,7 +166,8 @@ impl StatisticalExpectation {
     pub fn strategies(&self) -> Vec<Strategy> {
         let mut v = vec![self.strategy];
         for c in &self.checks {
-            if let StatCheck::Paired { baseline, .. } = c {
+            if let StatCheck::Paired { baseline, .. } | StatCheck::PairedShare { baseline, .. } = c
+            {
                 v.push(*baseline);
             }
         }
@@ -372,21 +391,65 @@ impl RawExpectation {
                             format!("{:?}", p.figure),
                         )
                     })?;
-                    let [lo, hi] = p.mean;
-                    if !(lo.is_finite() && hi.is_finite() && lo <= hi) {
+                    if p.at_most.is_some() != p.share.is_some() {
                         return Err(ScenarioError::field(
                             path,
-                            f("paired.mean"),
-                            "a range [low, high] with low ≤ high",
-                            format!("[{lo}, {hi}]"),
+                            f("paired.share"),
+                            "at_most = a difference together with share = [low, high]",
+                            format!("at_most {:?}, share {:?}", p.at_most, p.share),
                         ));
                     }
-                    checks.push(StatCheck::Paired {
-                        baseline,
-                        figure,
-                        lo,
-                        hi,
-                    });
+                    if p.mean.is_none() && p.share.is_none() {
+                        return Err(ScenarioError::field(
+                            path,
+                            f("paired"),
+                            "mean = [low, high], or at_most = D with share = [low, high]",
+                            "neither",
+                        ));
+                    }
+                    if let Some([lo, hi]) = p.mean {
+                        if !(lo.is_finite() && hi.is_finite() && lo <= hi) {
+                            return Err(ScenarioError::field(
+                                path,
+                                f("paired.mean"),
+                                "a range [low, high] with low ≤ high",
+                                format!("[{lo}, {hi}]"),
+                            ));
+                        }
+                        checks.push(StatCheck::Paired {
+                            baseline,
+                            figure,
+                            lo,
+                            hi,
+                        });
+                    }
+                    match (p.at_most, p.share) {
+                        (None, None) => {}
+                        (Some(at_most), Some([lo, hi]))
+                            if at_most.is_finite()
+                                && lo.is_finite()
+                                && hi.is_finite()
+                                && 0.0 <= lo
+                                && lo <= hi
+                                && hi <= 1.0 =>
+                        {
+                            checks.push(StatCheck::PairedShare {
+                                baseline,
+                                figure,
+                                at_most,
+                                lo,
+                                hi,
+                            });
+                        }
+                        (at_most, share) => {
+                            return Err(ScenarioError::field(
+                                path,
+                                f("paired.share"),
+                                "at_most = a finite difference together with share = [low, high], fractions with 0 ≤ low ≤ high ≤ 1",
+                                format!("at_most {at_most:?}, share {share:?}"),
+                            ));
+                        }
+                    }
                 }
                 if checks.is_empty() {
                     return Err(ScenarioError::field(

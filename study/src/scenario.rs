@@ -37,7 +37,6 @@ const DEFAULT_OPERATOR_MARGIN_M: f64 = 1.0;
 const DEFAULT_DRIVE_START: &str = "11:00";
 const DEFAULT_DRIVE_END: &str = "15:00";
 const DEFAULT_POST_DRIVE_IMAGING_S: u32 = 1800;
-const DEFAULT_MAX_EXTENSION_SOLS: u32 = 3;
 
 // Physical ranges: a finite value outside them would run to nonsense, so the loader refuses
 // it. Each is generous against the rover it bounds (README, "Scenario files", lists them).
@@ -106,8 +105,8 @@ pub struct ScenarioSpec {
     pub operator_margin_m: f64,
     /// Post-drive imaging before a downlink pass, seconds.
     pub post_drive_imaging_s: u32,
-    /// Extension sols without a localization before extension drives stop.
-    pub max_extension_sols: u32,
+    /// Plan lengths, the optional extension cap, the planners' passage margin.
+    pub rules: sim::policy::OperationsRules,
     /// Science campaigns (target positions on the map: checked by [`Scenario::build`]).
     pub science: sim::science::Science,
     /// Expected outcomes of one seeded run per strategy.
@@ -808,15 +807,50 @@ impl ScenarioSpec {
                 post_drive_imaging_s,
             ));
         }
-        let max_extension_sols = ops.max_extension_sols.unwrap_or(DEFAULT_MAX_EXTENSION_SOLS);
-        if max_extension_sols as usize > MAX_SOLS {
-            return Err(ScenarioError::field(
-                path,
-                "operations.max_extension_sols",
-                format!("at most {MAX_SOLS} sols"),
-                max_extension_sols,
-            ));
-        }
+        let defaults = sim::policy::OperationsRules::default();
+        let sols_field = |field: &str, v: Option<u32>, default: u32| {
+            let v = v.unwrap_or(default);
+            if v == 0 || v as usize > MAX_SOLS {
+                Err(ScenarioError::field(
+                    path,
+                    format!("operations.{field}"),
+                    format!("1 ..= {MAX_SOLS} sols"),
+                    v,
+                ))
+            } else {
+                Ok(v)
+            }
+        };
+        let rules = sim::policy::OperationsRules {
+            max_extension_sols: ops
+                .max_extension_sols
+                .map(|v| sols_field("max_extension_sols", Some(v), v))
+                .transpose()?,
+            max_drive_sols_per_plan: sols_field(
+                "max_drive_sols_per_plan",
+                ops.max_drive_sols_per_plan,
+                defaults.max_drive_sols_per_plan,
+            )?,
+            extension_plan_sols: sols_field(
+                "extension_plan_sols",
+                ops.extension_plan_sols,
+                defaults.extension_plan_sols,
+            )?,
+            passage_margin_m: ops
+                .passage_margin_m
+                .map_or(Ok(defaults.passage_margin_m), |v| {
+                    c.in_range(
+                        "operations.passage_margin_m",
+                        v,
+                        0.0,
+                        MAX_MARGIN_M,
+                        "metres",
+                    )
+                })?,
+            preemptive_shortening: ops
+                .preemptive_shortening
+                .unwrap_or(defaults.preemptive_shortening),
+        };
         Ok(ScenarioSpec {
             path: path.to_path_buf(),
             name: raw.name,
@@ -838,7 +872,7 @@ impl ScenarioSpec {
             },
             operator_margin_m,
             post_drive_imaging_s,
-            max_extension_sols,
+            rules,
             science,
             expectations,
             statistical_expectations,
@@ -1031,7 +1065,7 @@ impl Scenario {
             localizer,
             operator_margin_m: spec.operator_margin_m,
             post_drive_imaging_s: spec.post_drive_imaging_s,
-            max_extension_sols: spec.max_extension_sols,
+            rules: spec.rules,
             grid,
             sol_plan: sim::sol_plan::SolPlanParams {
                 imaging_s: i64::from(spec.post_drive_imaging_s),

@@ -119,23 +119,46 @@ pub fn check(e: &StatisticalExpectation, rows: &[RunRow], sweep_seed: u64) -> St
                 }
                 out.measured.push(text);
             }
+            StatCheck::PairedShare {
+                baseline,
+                figure,
+                at_most,
+                lo,
+                hi,
+            } => {
+                let diffs = paired_diffs(rows, &mine, baseline, figure);
+                let n = diffs.len() as u64;
+                let count = diffs.iter().filter(|&&d| d <= at_most + 1e-9).count() as u64;
+                let got = count as f64 / n.max(1) as f64;
+                let ci = stats::wilson(count, n, CONFIDENCE);
+                let text = format!(
+                    "share of runs with {} − {} ≤ {at_most}: {got:.3} [{}] ({count} of {n} pairs)",
+                    name(figure),
+                    baseline.name(),
+                    ci.map_or("-".into(), |i| format!("{:.3}, {:.3}", i.lo, i.hi))
+                );
+                if !(n > 0 && got >= lo - 1e-12 && got <= hi + 1e-12) {
+                    out.mismatches.push(Mismatch {
+                        check: format!(
+                            "{} paired {} − {} ≤ {at_most} over {} runs",
+                            e.strategy.name(),
+                            name(figure),
+                            baseline.name(),
+                            e.runs
+                        ),
+                        expected: format!("share in [{lo}, {hi}]"),
+                        got: text.clone(),
+                    });
+                }
+                out.measured.push(text);
+            }
             StatCheck::Paired {
                 baseline,
                 figure,
                 lo,
                 hi,
             } => {
-                let base: BTreeMap<u64, &RunRow> = rows
-                    .iter()
-                    .filter(|r| r.strategy == baseline)
-                    .map(|r| (r.run_index, r))
-                    .collect();
-                let diffs: Vec<f64> = mine
-                    .iter()
-                    .filter_map(|r| {
-                        Some(figure_of(figure, r)? - figure_of(figure, base.get(&r.run_index)?)?)
-                    })
-                    .collect();
+                let diffs = paired_diffs(rows, &mine, baseline, figure);
                 let d = stats::paired_bootstrap(
                     &diffs,
                     summary::BOOTSTRAP_RESAMPLES,
@@ -180,6 +203,18 @@ pub fn check(e: &StatisticalExpectation, rows: &[RunRow], sweep_seed: u64) -> St
         }
     }
     out
+}
+
+/// (strategy − baseline) on `figure` over the run indices where both have it.
+fn paired_diffs(rows: &[RunRow], mine: &[&RunRow], baseline: Strategy, figure: Figure) -> Vec<f64> {
+    let base: BTreeMap<u64, &RunRow> = rows
+        .iter()
+        .filter(|r| r.strategy == baseline)
+        .map(|r| (r.run_index, r))
+        .collect();
+    mine.iter()
+        .filter_map(|r| Some(figure_of(figure, r)? - figure_of(figure, base.get(&r.run_index)?)?))
+        .collect()
 }
 
 fn name(f: Figure) -> &'static str {

@@ -123,6 +123,10 @@ pub(crate) struct RawOperations {
     pub(crate) drive_end_lmst: Option<String>,
     pub(crate) post_drive_imaging_s: Option<u32>,
     pub(crate) max_extension_sols: Option<u32>,
+    pub(crate) max_drive_sols_per_plan: Option<u32>,
+    pub(crate) extension_plan_sols: Option<u32>,
+    pub(crate) passage_margin_m: Option<f64>,
+    pub(crate) preemptive_shortening: Option<bool>,
 }
 
 #[derive(Debug, Deserialize)]

@@ -1,0 +1,73 @@
+//! `[operations]` planning rules (plan lengths, extension breadcrumbs, the passage margin, the
+//! optional extension cap) and the statistical `paired = { at_most, share }` check: bad values
+//! are one line naming the field; good ones load and act.
+
+mod common;
+
+use common::{assert_bad_input, scenario_copy, solsim};
+
+fn validate(edit: impl Fn(String) -> String) -> std::process::Output {
+    let (path, _d) = scenario_copy("sol717-719.toml", edit);
+    solsim().arg("validate").arg(&path).output().expect("runs")
+}
+
+fn with_operations(lines: &str) -> impl Fn(String) -> String + '_ {
+    move |t: String| t.replacen("[operations]", &format!("[operations]\n{lines}"), 1)
+}
+
+#[test]
+fn zero_drive_sols_per_plan_is_refused() {
+    let o = validate(with_operations("max_drive_sols_per_plan = 0"));
+    assert_bad_input(&o, &["operations.max_drive_sols_per_plan", "sols", "got 0"]);
+}
+
+#[test]
+fn an_absurd_extension_plan_is_refused() {
+    let o = validate(with_operations("extension_plan_sols = 4000000000"));
+    assert_bad_input(&o, &["operations.extension_plan_sols", "sols"]);
+}
+
+#[test]
+fn a_negative_or_nan_passage_margin_is_refused() {
+    let o = validate(with_operations("passage_margin_m = -1.0"));
+    assert_bad_input(&o, &["operations.passage_margin_m", "metres", "got -1"]);
+    let o = validate(with_operations("passage_margin_m = nan"));
+    assert_bad_input(&o, &["operations.passage_margin_m", "metres"]);
+}
+
+#[test]
+fn the_planning_rules_load() {
+    let o = validate(with_operations(
+        "max_drive_sols_per_plan = 2\nextension_plan_sols = 5\npassage_margin_m = 2.5\nmax_extension_sols = 3",
+    ));
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+#[test]
+fn a_paired_share_without_its_range_is_refused() {
+    let o = validate(|t| {
+        t + "\n[[expect]]\nstrategy = \"onboard\"\nruns = 10\npaired = { baseline = \"ground\", figure = \"sols_to_goal\", at_most = -1.0 }\n"
+    });
+    assert_bad_input(&o, &["expect[3].paired.share", "at_most"]);
+}
+
+#[test]
+fn a_paired_share_outside_zero_one_is_refused() {
+    let o = validate(|t| {
+        t + "\n[[expect]]\nstrategy = \"onboard\"\nruns = 10\npaired = { baseline = \"ground\", figure = \"sols_to_goal\", at_most = -1.0, share = [0.5, 2.0] }\n"
+    });
+    assert_bad_input(&o, &["expect[3].paired.share", "fractions"]);
+}
+
+#[test]
+fn a_paired_entry_needs_a_mean_or_a_share() {
+    let o = validate(|t| {
+        t + "\n[[expect]]\nstrategy = \"onboard\"\nruns = 10\npaired = { baseline = \"ground\", figure = \"sols_to_goal\" }\n"
+    });
+    assert_bad_input(&o, &["expect[3].paired", "mean = [low, high]"]);
+}
