@@ -216,6 +216,7 @@ def check_rows(problems, runs, sols, manifest):
         "run_index": sols.column("run_index"),
         "strategy": sols.column("strategy"),
         "distance_m": sols.column("distance_m"),
+        "drive_time_s": sols.column("drive_time_s"),
         "drive_sols": sols.column("drove"),
         "no_path_faults": pc.equal(fault, "NO_PATH"),
         "keep_out_faults": pc.equal(fault, "KEEP_OUT"),
@@ -234,6 +235,10 @@ def check_rows(problems, runs, sols, manifest):
     agg = per_sol.group_by(["run_index", "strategy"]).aggregate(
         [(name, f) for name, f in how.items()])
     derived = {(r["run_index"], r["strategy"]): r for r in agg.to_pylist()}
+    uplinks = sols.filter(sols.column("drove")).group_by(["run_index", "strategy"]).aggregate(
+        [("plan_uplink_sol", "count_distinct")])
+    plan_uplinks = {(r["run_index"], r["strategy"]): r["plan_uplink_sol_count_distinct"]
+                    for r in uplinks.to_pylist()}
     for row in runs.to_pylist():
         k = (row["run_index"], row["strategy"])
         if k not in derived:
@@ -247,6 +252,9 @@ def check_rows(problems, runs, sols, manifest):
                 problems.close(where, f"{name} against sols.parquet", got, want, 1.0)
             else:
                 problems.equal(where, f"{name} against sols.parquet", got, want)
+        problems.equal(where, "drive_plan_uplinks against sols.parquet (distinct "
+                              "plan_uplink_sol of the sols that drove)",
+                       row["drive_plan_uplinks"], plan_uplinks.get(k, 0))
         max_end_r = derived[k]["max_end_uncertainty_m_max"]
         if row["max_uncertainty_m"] < max_end_r:
             problems.add(where, f"max_uncertainty_m {row['max_uncertainty_m']} below the "

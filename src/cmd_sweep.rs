@@ -14,7 +14,7 @@ use clap::{Args, Subcommand};
 use maps::MemoryBudget;
 use sim::Strategy;
 use study::Scenario;
-use sweep::engine::{DEFAULT_CHUNK_RUNS, Shard, SweepResult, SweepSpec};
+use sweep::engine::{DEFAULT_CHUNK_RUNS, Shard, Summary, SweepResult, SweepSpec};
 use sweep::summary::{Figure, RateKind, Statistics};
 
 /// `solsim sweep`.
@@ -171,8 +171,10 @@ fn spec(what: &SweepWhat, scenario: &Scenario) -> anyhow::Result<SweepSpec> {
     Ok(spec)
 }
 
-/// Prints progress to stderr: a bar on a terminal, a plain line every 10 s otherwise.
-struct Progress {
+/// Prints progress to stderr: a bar on a terminal, a plain line every 10 s otherwise (and one
+/// at the end), starting with `label` (`sweep: 40/200 runs …`).
+pub(crate) struct Progress {
+    label: &'static str,
     bar: Option<indicatif::ProgressBar>,
     plain: Option<Mutex<Instant>>,
     started: Instant,
@@ -180,7 +182,7 @@ struct Progress {
 }
 
 impl Progress {
-    fn new(quiet: bool) -> Self {
+    pub(crate) fn new(quiet: bool, label: &'static str) -> Self {
         let tty = std::io::stderr().is_terminal();
         let bar = (!quiet && tty).then(|| {
             let bar = indicatif::ProgressBar::new(0);
@@ -193,6 +195,7 @@ impl Progress {
             bar
         });
         Self {
+            label,
             bar,
             plain: (!quiet && !tty).then(|| Mutex::new(Instant::now())),
             started: Instant::now(),
@@ -200,7 +203,7 @@ impl Progress {
         }
     }
 
-    fn update(&self, done: u64, total: u64) {
+    pub(crate) fn update(&self, done: u64, total: u64) {
         let first = *self
             .first_done
             .lock()
@@ -224,18 +227,32 @@ impl Progress {
                     String::new()
                 };
                 eprintln!(
-                    "sweep: {done}/{total} runs ({:.0} %), {rate:.1} runs/s{eta}",
+                    "{}: {done}/{total} runs ({:.0} %), {rate:.1} runs/s{eta}",
+                    self.label,
                     100.0 * done as f64 / total.max(1) as f64
                 );
             }
         }
     }
 
-    fn finish(&self) {
+    pub(crate) fn finish(&self) {
         if let Some(bar) = &self.bar {
             bar.finish_and_clear();
         }
     }
+}
+
+/// Runs the sweep `spec` in memory, with progress on stderr as a sweep shows it (labelled
+/// `compare`), and returns its summary: what `solsim compare --runs N` reports. Call
+/// [`SweepSpec::validate`] first.
+#[must_use]
+pub fn summary_in_memory(scenario: &Scenario, spec: &SweepSpec) -> Summary {
+    let progress = Progress::new(false, "compare");
+    let summary = sweep::engine::summary_in_memory(scenario, spec, &|done, total| {
+        progress.update(done, total);
+    });
+    progress.finish();
+    summary
 }
 
 fn sweep(a: &SweepRunArgs, budget: MemoryBudget, stdout: &mut dyn Write) -> anyhow::Result<()> {
@@ -257,7 +274,7 @@ fn sweep(a: &SweepRunArgs, budget: MemoryBudget, stdout: &mut dyn Write) -> anyh
         .num_threads(a.threads.map_or(0, |t| t as usize))
         .build()
         .context("cannot start the worker threads")?;
-    let progress = Progress::new(a.quiet);
+    let progress = Progress::new(a.quiet, "sweep");
     let result = pool.install(|| {
         sweep::run(&scenario, &spec, &out, a.resume, &|done, total| {
             progress.update(done, total);

@@ -10,6 +10,8 @@
 //!   submit scripts (the engine is the [`sweep`] crate).
 //! - [`regress`]: runs every scenario's `[[expect]]` entries; text and JUnit reports.
 //! - [`report`]: JSON, per-sol CSV, GeoJSON outputs and terminal tables.
+//! - [`report_runs`]: `compare --runs N`, each strategy against ground over N seeded runs with
+//!   intervals (the statistics of the [`sweep`] crate).
 //! - [`output_set`]: output directories replaced whole ([`output_set::OutputSet`]), never a
 //!   mix of two runs.
 #![warn(missing_docs)]
@@ -25,3 +27,4 @@ pub mod cmd_zones;
 pub mod output_set;
 pub mod regress;
 pub mod report;
+pub mod report_runs;

@@ -64,6 +64,17 @@ pub struct OutputSet {
 }
 
 impl OutputSet {
+    /// Checks that `target` may be replaced (new, an empty directory, or an earlier output set)
+    /// without touching anything: lets a long command refuse an unusable `--out` before it
+    /// runs. [`OutputSet::begin`] checks again.
+    ///
+    /// # Errors
+    /// [`OutputSetError::NotAnOutputSet`], [`OutputSetError::NotADirectory`], or
+    /// [`OutputSetError::Io`] when `target` cannot be inspected.
+    pub fn check(target: &Path) -> Result<(), OutputSetError> {
+        check_replaceable(target)
+    }
+
     /// Starts a set for `target`, after checking it may be replaced and removing what killed
     /// runs into the same place left behind.
     ///

@@ -464,6 +464,31 @@ impl CampaignOutcome {
         }
         None
     }
+
+    /// Time spent driving over the run: the sols' `drive_time_s`, summed in sol order.
+    ///
+    /// # Units
+    /// Seconds.
+    #[must_use]
+    pub fn drive_time_s(&self) -> f64 {
+        self.sols.iter().fold(0.0, |acc, s| acc + s.drive_time_s)
+    }
+
+    /// Uplinks whose plan commanded a drive: the distinct `plan_uplink_sol`s of the sols that
+    /// drove. Each is a sol on which the ground had to build a drive plan (the staffing figure
+    /// of paper 000 §8); a multi-sol plan counts once.
+    #[must_use]
+    pub fn drive_plan_uplinks(&self) -> u32 {
+        let mut uplinks: Vec<u32> = self
+            .sols
+            .iter()
+            .filter(|s| s.drove)
+            .map(|s| s.plan_uplink_sol)
+            .collect();
+        uplinks.sort_unstable();
+        uplinks.dedup();
+        uplinks.len() as u32
+    }
 }
 
 #[cfg(test)]

@@ -28,11 +28,16 @@ pub enum Figure {
     OnboardRejected,
     /// `max_truth_error_m`.
     MaxTruthErrorM,
+    /// `drive_time_s`: time spent driving, seconds.
+    DriveTimeS,
+    /// `drive_plan_uplinks`: uplinks whose plan commanded a drive.
+    DrivePlanUplinks,
 }
 
 impl Figure {
-    /// Every figure, in report order.
-    pub const ALL: [Figure; 11] = [
+    /// Every figure, in report order. New figures go at the end: a figure's place seeds its
+    /// bootstrap (`sweep::summary::bootstrap_seed`), so reordering would change every interval.
+    pub const ALL: [Figure; 13] = [
         Figure::SolsToGoal,
         Figure::SegmentSols,
         Figure::SegmentDistanceM,
@@ -44,6 +49,8 @@ impl Figure {
         Figure::OnboardApplied,
         Figure::OnboardRejected,
         Figure::MaxTruthErrorM,
+        Figure::DriveTimeS,
+        Figure::DrivePlanUplinks,
     ];
 
     /// The column name in `runs.parquet`.
@@ -61,6 +68,8 @@ impl Figure {
             Figure::OnboardApplied => "onboard_localizations_applied",
             Figure::OnboardRejected => "onboard_localizations_rejected",
             Figure::MaxTruthErrorM => "max_truth_error_m",
+            Figure::DriveTimeS => "drive_time_s",
+            Figure::DrivePlanUplinks => "drive_plan_uplinks",
         }
     }
 

@@ -41,6 +41,22 @@ pub const MAX_RUNS: u64 = 10_000_000;
 /// slot, rounded up).
 const RUN_ROW_BYTES: u64 = 192;
 
+/// Checks a run count (`--runs`): from `fewest` to [`MAX_RUNS`]. [`SweepSpec::validate`]
+/// calls it with 1; `solsim compare --runs` with 2.
+///
+/// # Errors
+/// `runs` outside that range: `--runs: expected a number of runs from 1 to 10000000, got 0`.
+pub fn check_runs(runs: u64, fewest: u64) -> Result<(), SweepError> {
+    if runs < fewest || runs > MAX_RUNS {
+        return Err(SweepError::option(
+            "--runs",
+            format!("a number of runs from {fewest} to {MAX_RUNS}"),
+            runs,
+        ));
+    }
+    Ok(())
+}
+
 /// A slice of the run indices: `--shard INDEX/COUNT`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Shard {
@@ -128,13 +144,7 @@ impl SweepSpec {
         scenario: &Scenario,
         budget: maps::MemoryBudget,
     ) -> Result<(), SweepError> {
-        if self.runs == 0 || self.runs > MAX_RUNS {
-            return Err(SweepError::option(
-                "--runs",
-                format!("a number of runs from 1 to {MAX_RUNS}"),
-                self.runs,
-            ));
-        }
+        check_runs(self.runs, 1)?;
         if let Some(s) = self.shard
             && s.count > self.runs
         {
@@ -319,14 +329,45 @@ fn run_rows(
 /// `solsim regress`'s statistical expectations.
 #[must_use]
 pub fn run_in_memory(scenario: &Scenario, spec: &SweepSpec, runs: Range<u64>) -> Vec<RunRow> {
+    rows_in_memory(scenario, spec, runs, &|_, _| {})
+}
+
+/// [`run_in_memory`], calling `progress(done, total)` with the run indices done after each.
+fn rows_in_memory(
+    scenario: &Scenario,
+    spec: &SweepSpec,
+    runs: Range<u64>,
+    progress: &(dyn Fn(u64, u64) + Sync),
+) -> Vec<RunRow> {
     let segment = segment_of(scenario);
+    let total = runs.end - runs.start;
+    let done = AtomicU64::new(0);
     runs.into_par_iter()
         .flat_map_iter(|run| {
-            run_rows(scenario, spec, segment, run)
+            let rows: Vec<RunRow> = run_rows(scenario, spec, segment, run)
                 .into_iter()
                 .map(|(r, _)| r)
+                .collect();
+            progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
+            rows
         })
         .collect()
+}
+
+/// Runs the sweep `spec` in memory — no directory, no Parquet files, no sol rows kept — and
+/// returns its [`Summary`]: the one [`run`] writes to `summary.json` for the same scenario and
+/// spec, equal once serialised (row order and arithmetic are the same; the thread count changes
+/// neither). `progress(done, total)` is called with the run indices done after each one. This
+/// is what `solsim compare --runs N` reports. Check the spec with [`SweepSpec::validate`] first:
+/// the run table is held in memory.
+#[must_use]
+pub fn summary_in_memory(
+    scenario: &Scenario,
+    spec: &SweepSpec,
+    progress: &(dyn Fn(u64, u64) + Sync),
+) -> Summary {
+    let rows = rows_in_memory(scenario, spec, spec.run_range(), progress);
+    summarise(&rows, &spec.manifest(scenario, segment_of(scenario)))
 }
 
 fn chunk_name(kind: &str, first: u64, end: u64) -> String {

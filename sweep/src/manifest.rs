@@ -17,7 +17,7 @@ use crate::error::SweepError;
 use crate::parquet_io;
 
 /// The value of [`Manifest::format`].
-pub const FORMAT: &str = "solsim-sweep/1";
+pub const FORMAT: &str = "solsim-sweep/2";
 /// The manifest's file name.
 pub const MANIFEST: &str = "manifest.json";
 

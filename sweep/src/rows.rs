@@ -72,6 +72,10 @@ pub struct RunRow {
     /// Metres driven from the study segment's first sol to the end of the calendar (`None`:
     /// no segment).
     pub segment_distance_m: Option<f64>,
+    /// Time spent driving, seconds ([`CampaignOutcome::drive_time_s`]).
+    pub drive_time_s: f64,
+    /// Uplinks whose plan commanded a drive ([`CampaignOutcome::drive_plan_uplinks`]).
+    pub drive_plan_uplinks: u32,
 }
 
 /// One sol of one run of one strategy: a row of `sols.parquet`.
@@ -185,6 +189,8 @@ pub fn rows_of(
                 .map(|s| s.distance_m)
                 .sum()
         }),
+        drive_time_s: outcome.drive_time_s(),
+        drive_plan_uplinks: outcome.drive_plan_uplinks(),
     };
     let sols = outcome
         .sols
@@ -257,6 +263,8 @@ pub fn runs_schema() -> SchemaRef {
         field("max_truth_error_m", Float64, false),
         field("segment_sols", UInt32, true),
         field("segment_distance_m", Float64, true),
+        field("drive_time_s", Float64, false),
+        field("drive_plan_uplinks", UInt32, false),
     ]))
 }
 
@@ -354,6 +362,8 @@ pub fn runs_batch(rows: &[RunRow]) -> Result<RecordBatch, ArrowError> {
             f64s(rows, |r| Some(r.max_truth_error_m)),
             u32s(rows, |r| r.segment_sols),
             f64s(rows, |r| r.segment_distance_m),
+            f64s(rows, |r| Some(r.drive_time_s)),
+            u32s(rows, |r| Some(r.drive_plan_uplinks)),
         ],
     )
 }
@@ -428,8 +438,9 @@ pub fn run_rows_from(batch: &RecordBatch) -> Result<Vec<RunRow>, ArrowError> {
         ground,
         outside,
         segment,
-    ] = [5, 8, 9, 10, 11, 13, 14, 15, 16, 18].map(u32c);
-    let [distance, remaining, max_r, max_truth] = [6, 7, 12, 17].map(f64c);
+        plan_uplinks,
+    ] = [5, 8, 9, 10, 11, 13, 14, 15, 16, 18, 21].map(u32c);
+    let [distance, remaining, max_r, max_truth, drive_time] = [6, 7, 12, 17, 20].map(f64c);
     let segment_distance = f64c(19);
     (0..batch.num_rows())
         .map(|i| {
@@ -457,6 +468,8 @@ pub fn run_rows_from(batch: &RecordBatch) -> Result<Vec<RunRow>, ArrowError> {
                 segment_sols: opt(&segment, i),
                 segment_distance_m: (!segment_distance.is_null(i))
                     .then(|| segment_distance.value(i)),
+                drive_time_s: drive_time.value(i),
+                drive_plan_uplinks: plan_uplinks.value(i),
             })
         })
         .collect()

@@ -33,6 +33,8 @@ pub fn figure_of(figure: Figure, r: &RunRow) -> Option<f64> {
         Figure::OnboardApplied => Some(f64::from(r.onboard_localizations_applied)),
         Figure::OnboardRejected => Some(f64::from(r.onboard_localizations_rejected)),
         Figure::MaxTruthErrorM => Some(r.max_truth_error_m),
+        Figure::DriveTimeS => Some(r.drive_time_s),
+        Figure::DrivePlanUplinks => Some(f64::from(r.drive_plan_uplinks)),
     }
 }
 
