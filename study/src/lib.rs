@@ -18,13 +18,15 @@
 //! use sim::Strategy;
 //! use study::Scenario;
 //!
-//! // Sols 383-386 (paper 000 §2): the ground-in-the-loop plan faults NO_PATH on sol 384 or 385.
+//! // Sols 383-386 (paper 000 §2): the historic plan faults NO_PATH on sol 385; onboard
+//! // localization after every drive keeps the passage open.
 //! let scenario = Scenario::load("../scenarios/sol383-386.toml".as_ref())?;
 //! for run in 0..2 {
 //!     // Run 0 is the scenario's own seed; each run index is another world and other draws.
-//!     let outcome = scenario.run_index(Strategy::Ground, run);
-//!     assert_eq!(outcome.sols.len(), 5); // 383-386 and 387, beyond the record
-//!     assert!(outcome.totals.no_path_faults >= 1);
+//!     let replay = scenario.run_index(Strategy::Replay, run);
+//!     assert_eq!(replay.sols.len(), 5); // 383-386 and 387, beyond the record
+//!     assert!(replay.totals.no_path_faults >= 1);
+//!     assert_eq!(scenario.run_index(Strategy::Onboard, run).totals.no_path_faults, 0);
 //! }
 //! # Ok::<(), study::ScenarioError>(())
 //! ```
