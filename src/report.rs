@@ -437,7 +437,7 @@ pub fn against_ground(scenario: &Scenario, outcomes: &[CampaignOutcome]) -> Stri
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "\nAgainst ground (same seed, same calendar; one run — `solsim sweep` gives rates and intervals):"
+        "\nAgainst ground (same seed, same calendar; one run — `--runs N` gives rates and intervals):"
     );
     if let (Some(g), Some(b)) = (scenario.study_segment, segment(base)) {
         let _ = writeln!(
