@@ -14,7 +14,8 @@ use std::path::PathBuf;
 use std::time::Duration;
 
 use planner::{
-    Instance, MICRO_PER_POINT, PlanOutcome, SearchSettings, State, TaskId, Violation, validate_plan,
+    Instance, MICRO_PER_POINT, PlanOutcome, SearchSettings, State, TaskId, Timeline, Violation,
+    step_resources, validate_plan,
 };
 
 mod report_format;
@@ -63,6 +64,8 @@ pub struct TimelineRow {
     pub campaign: Option<String>,
     /// Mandatory activity.
     pub mandatory: bool,
+    /// The timeline(s) it holds (`hbs_link` steps run in parallel with `main` ones).
+    pub timeline: Timeline,
     /// Metres driven (all drives) when the step starts.
     pub driven_at_start_m: f64,
     /// Battery energy after the step, Wh.
@@ -168,22 +171,12 @@ pub fn run(args: &PlanArgs, out: &mut dyn Write) -> anyhow::Result<()> {
 
 fn timeline(instance: &Instance, state: &State, outcome: &PlanOutcome) -> Vec<TimelineRow> {
     let p = instance.problem();
-    let mut energy = state.energy_wh;
-    let mut data = state.data_mb;
-    let mut driven = state.driven_m;
-    let mut now = state.time_s;
     let mut rows = Vec::with_capacity(outcome.plan.steps.len());
-    for s in &outcome.plan.steps {
+    // The validator's re-simulation: battery and data after each step, metres at its start.
+    let resources = step_resources(instance, state, &outcome.plan);
+    for (s, r) in outcome.plan.steps.iter().zip(resources) {
         let task = instance.task(s.task);
         let activity = &p.activities[task.activity];
-        // The same arithmetic as the validator: idle recharge clipped at capacity, then the
-        // step's net draw; data added at the end, then downlinked.
-        let idle_s = (s.start_s - now).max(0);
-        energy = (energy + p.recharge_w * idle_s as f64 / 3600.0).min(p.battery_capacity_wh);
-        energy += (p.recharge_w - task.power_w) * (s.end_s - s.start_s).max(0) as f64 / 3600.0;
-        energy = energy.min(p.battery_capacity_wh);
-        data += task.data_mb;
-        data = (data - task.downlink_mb).max(0.0);
         let segment = task.segment.map(|(j, k)| {
             // fold from +0.0: an empty f64 `sum` is -0.0, which prints as "-0".
             let from_m = instance.activity_tasks(task.activity)[..j as usize]
@@ -201,12 +194,11 @@ fn timeline(instance: &Instance, state: &State, outcome: &PlanOutcome) -> Vec<Ti
                 .campaign
                 .map(|c| instance.problem().campaigns[c].id.clone()),
             mandatory: task.mandatory,
-            driven_at_start_m: driven,
-            energy_wh: energy,
-            data_mb: data,
+            timeline: task.timeline,
+            driven_at_start_m: r.driven_at_start_m,
+            energy_wh: r.energy_wh_after,
+            data_mb: r.data_mb_after,
         });
-        driven += task.drive_m;
-        now = now.max(s.end_s);
     }
     rows
 }
@@ -281,6 +273,11 @@ fn describe(instance: &Instance, outcome: &PlanOutcome, v: &Violation) -> String
             )
         }
         Violation::Overlap { step: i } => format!("{}: overlaps the previous step", step(*i)),
+        Violation::LinkOverlap { step: i, other } => format!(
+            "{}: overlaps {} on the HBS link",
+            step(*i),
+            task_name(instance, *other)
+        ),
         Violation::PastEndOfSol { step: i } => format!("{}: ends after the sol window", step(*i)),
         Violation::MissingPrecondition {
             step: i,

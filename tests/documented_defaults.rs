@@ -1,7 +1,9 @@
 //! Every default the README states is the default the code uses (rapier's docs drifted from its
 //! `Default`; this test keeps ours honest). Each pair is (text in README.md, value in code).
 
-use localization::onboard::{MEASURED_FLIGHT_SIZE_RUN_S, OnboardSettings};
+use localization::onboard::{
+    FLIGHT_NAVCAM_IMAGES_BYTES, FLIGHT_SIZE_MAP_BYTES, MEASURED_FLIGHT_SIZE_RUN_S, OnboardSettings,
+};
 use sim::autonav::RoverParams;
 use sim::localizer::{OnboardLocalizer, StatisticalLocalizer};
 use sim::planning_grid::GridParams;
@@ -105,6 +107,26 @@ fn readme_defaults_match_the_code() {
     }
     // The image localizers' co-processor timing.
     let onboard = OnboardSettings::default();
+    assert_eq!(
+        onboard.hbs.link_bytes_per_s,
+        1_000.0 * study::scenario::DEFAULT_HBS_LINK_RATE_KB_PER_S
+    );
+    assert_eq!(loc.hbs, onboard.hbs);
+    let thousands = |n: usize| {
+        let s = n.to_string();
+        let mut out = String::new();
+        for (i, c) in s.chars().enumerate() {
+            if i > 0 && (s.len() - i).is_multiple_of(3) {
+                out.push(',');
+            }
+            out.push(c);
+        }
+        out
+    };
+    let (images, chip) = (
+        thousands(FLIGHT_NAVCAM_IMAGES_BYTES),
+        thousands(FLIGHT_SIZE_MAP_BYTES),
+    );
     for text in [
         format!(
             "`hbs_slowdown` (image localizers only; default {:.1})",
@@ -112,6 +134,13 @@ fn readme_defaults_match_the_code() {
         ),
         format!("development machine, {MEASURED_FLIGHT_SIZE_RUN_S} s"),
         "(default `\"statistical\"`)".to_string(),
+        // The HBS link: the default rate, and the calibrated flight sizes of what crosses it.
+        format!(
+            "`hbs_link_rate_kb_per_s` (default {}; 1 to 1000; 1 KB = 1000 bytes)",
+            study::scenario::DEFAULT_HBS_LINK_RATE_KB_PER_S
+        ),
+        format!("({images} bytes: the paper gives no size"),
+        format!("the orbital map chip ({chip} bytes at the 30 m search radius"),
         format!(
             "({} m minimum, {} m maximum)",
             onboard.min_search_radius_m, onboard.max_search_radius_m

@@ -411,3 +411,96 @@ fn documented_defaults_match_the_code() {
         "{help}"
     );
 }
+
+// --- The HBS link timeline (issue 12, item 3).
+
+/// The bundled file with a 30 min transfer to the co-processor on the HBS link, fixed to start
+/// at 16:00, and a co-processor run after it; `extra` is added to the transfer.
+fn with_link_transfer(extra: &str) -> String {
+    let text = std::fs::read_to_string(scenario()).expect("read");
+    let at = text.find("[[campaigns]]").expect("campaigns");
+    let link = [
+        "[[activities]]",
+        "id = \"hbs-transfer\"",
+        "duration_min = 30",
+        "earliest_start_lmst = \"16:00\"",
+        "latest_start_lmst = \"16:00\"",
+        "power_w = 15.0",
+        "mandatory = true",
+        "timeline = \"hbs_link\"",
+        extra,
+        "[[activities]]",
+        "id = \"hbs-run\"",
+        "duration_min = 1",
+        "power_w = 15.0",
+        "mandatory = true",
+        "timeline = \"hbs_link\"",
+        "preconditions = [\"hbs-transfer\"]",
+        "",
+    ]
+    .join("\n");
+    format!("{}{link}\n{}", &text[..at], &text[at..])
+}
+
+fn plan_text(text: &str, extra: &[&str]) -> (Output, PathBuf, tempfile::TempDir) {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("case.toml");
+    std::fs::write(&path, text).expect("write");
+    let o = plan(&path, extra);
+    (o, path, dir)
+}
+
+#[test]
+fn a_transfer_on_the_hbs_link_runs_across_the_relay_pass() {
+    let (o, _path, _d) = plan_text(&with_link_transfer(""), &["--json"]);
+    let doc: Value = serde_json::from_str(&stdout(&o)).expect("JSON");
+    assert_eq!(
+        doc["validator"]["violations"],
+        serde_json::json!([]),
+        "{doc}"
+    );
+    let step = |id: &str| {
+        steps(&doc)
+            .iter()
+            .find(|s| str_of(s, "activity") == id)
+            .unwrap_or_else(|| panic!("{id} not planned"))
+            .clone()
+    };
+    let (transfer, run, pass) = (
+        step("hbs-transfer"),
+        step("hbs-run"),
+        step("relay-odyssey-pm"),
+    );
+    assert_eq!(str_of(&transfer, "timeline"), "hbs_link");
+    assert!(pass.get("timeline").is_none(), "main is left out: {pass}");
+    let s = |v: &Value, k: &str| v[k].as_i64().expect("seconds");
+    assert_eq!(s(&transfer, "start_s"), lmst_s("16:00"));
+    assert!(
+        s(&pass, "start_s") < s(&transfer, "end_s"),
+        "the pass runs during the transfer"
+    );
+    assert_eq!(s(&run, "start_s"), s(&transfer, "end_s"));
+    // The table marks the link rows.
+    let (o, _path, _d) = plan_text(&with_link_transfer(""), &[]);
+    let table = stdout(&o);
+    assert!(table.contains("hbs-transfer [hbs_link] *"), "{table}");
+    assert!(
+        table.contains("[hbs_link] runs in parallel with the main timeline"),
+        "{table}"
+    );
+    assert!(table.contains("validator: 0 violations"), "{table}");
+}
+
+#[test]
+fn a_bad_timeline_is_refused_with_its_field() {
+    let text = with_link_transfer("").replacen("timeline = \"hbs_link\"", "timeline = \"hbs\"", 1);
+    let (o, path, _d) = plan_text(&text, &[]);
+    assert_bad_input(
+        &o,
+        &path,
+        &["activities[6].timeline", "hbs_link", "\"hbs\""],
+    );
+    // A link activity makes no data: the planner's error names the field.
+    let (o, path, _d) = plan_text(&with_link_transfer("data_mb = 5.0"), &[]);
+    assert_bad_input(&o, &path, &["activities[6].data_mb", "hbs_link"]);
+}

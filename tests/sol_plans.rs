@@ -62,8 +62,18 @@ fn every_drive_sol_of_the_rapid_traverse_has_a_valid_plan_with_the_chain_under_o
             let drive = at("drive").unwrap_or_else(|| panic!("sol {}: {names:?}", sol.sol));
             assert!(at("heating") < Some(drive), "{names:?}");
             assert!(at("post_drive_imaging") > Some(drive), "{names:?}");
-            // The timeline is in time order, the executed drive ends when AutoNav stopped.
+            // The timeline is in start order and its main-timeline rows follow one another
+            // (the co-processor chain's HBS-link rows overlap them); the executed drive ends
+            // when AutoNav stopped.
             for w in plan.timeline.windows(2) {
+                assert!(w[0].start_s <= w[1].start_s, "sol {}: {names:?}", sol.sol);
+            }
+            let main: Vec<_> = plan
+                .timeline
+                .iter()
+                .filter(|t| t.timeline.uses_main())
+                .collect();
+            for w in main.windows(2) {
                 assert!(w[0].end_s <= w[1].start_s, "sol {}: {names:?}", sol.sol);
             }
             let d = &plan.timeline[drive];
@@ -121,12 +131,19 @@ fn the_self_reliant_campaign_executes_science_and_replans() {
                 plan.violations
             );
             let t = &plan.timeline;
-            for w in t.windows(2) {
-                assert!(
-                    w[0].end_s <= w[1].start_s,
-                    "{strategy:?} {}: overlap",
-                    sol.sol
-                );
+            // Rows sharing a timeline never overlap (the HBS-link rows overlap main ones).
+            for (i, a) in t.iter().enumerate() {
+                for b in &t[i + 1..] {
+                    assert!(
+                        !a.timeline.shares(b.timeline)
+                            || a.end_s <= b.start_s
+                            || b.end_s <= a.start_s,
+                        "{strategy:?} {}: {} overlaps {}",
+                        sol.sol,
+                        a.activity,
+                        b.activity
+                    );
+                }
             }
             // Periodic instances start within ± 20 min of their due times.
             for step in t.iter().filter(|x| x.activity.starts_with("tau-")) {

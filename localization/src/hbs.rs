@@ -1,7 +1,9 @@
 //! The Helicopter Base Station (HBS) co-processor model (paper 000 §6-§7, Fig. 17-19).
 //!
 //! The rover's RAD750 writes the localization input file (`MOB_WRITE_ONBD_INPUT_FILE`) and sends
-//! it, with the post-drive images and map tiles, to the HBS over a serial link. The HBS runs the
+//! it, with the post-drive images and map tiles, to the HBS over a serial link; each file
+//! crosses it at its flight size ([`HbsFile::link_bytes`]), at [`HbsParams::link_bytes_per_s`]
+//! (~30 min at the flown 10 KB/s, paper 000 §4). The HBS runs the
 //! localization, reboots, runs it again; the two result files come back and must match byte for
 //! byte; every file carries an MD5 checksum that is checked at every stage; timeouts catch stalls;
 //! `MOB_APPLY_ONBD_LOCALIZATION` applies the result only if all of that passed and the result's
@@ -23,7 +25,9 @@ use rand_chacha::ChaCha8Rng;
 /// Co-processor settings (plain struct; every field has a unit and a default).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct HbsParams {
-    /// Serial link rate, bytes per second (default: 10,000 — "10KB/s", paper 000 §6).
+    /// Serial link rate, bytes per second (default: 10,000 — "10KB/s", paper 000 §6; "up to
+    /// 40KB/s could become possible with an RCE flight software update", ibid.). A KB is
+    /// 1,000 bytes here.
     pub link_bytes_per_s: f64,
     /// One localization run on the HBS, seconds (default: 32, paper 000 §8).
     pub run_s: f64,
@@ -65,18 +69,32 @@ pub struct HbsFile {
     pub bytes: Vec<u8>,
     /// MD5 of the contents when written.
     pub md5: [u8; 16],
+    /// Bytes that cross the serial link for this file, as flown: its length, unless it
+    /// stands in for a flight product of another size ([`HbsFile::with_link_bytes`]).
+    pub link_bytes: usize,
 }
 
 impl HbsFile {
-    /// A file and its checksum.
+    /// A file and its checksum; it crosses the link at its own length.
     #[must_use]
     pub fn new(name: impl Into<String>, bytes: Vec<u8>) -> Self {
         let md5 = md5_of(&bytes);
+        let link_bytes = bytes.len();
         Self {
             name: name.into(),
             bytes,
             md5,
+            link_bytes,
         }
+    }
+
+    /// The same file crossing the link as `link_bytes` bytes: a simulated stand-in for a
+    /// flight product of that size (the post-drive NavCam images, from which the HBS builds
+    /// the orthomosaic the simulator renders directly).
+    #[must_use]
+    pub fn with_link_bytes(mut self, link_bytes: usize) -> Self {
+        self.link_bytes = link_bytes;
+        self
     }
 
     /// Whether the contents still match the checksum.
@@ -265,15 +283,15 @@ pub fn run_activity(
         duration_s: 0.0,
         outcome: Err(LossReason::ResultsDiffer),
     };
-    let input_bytes: usize = inputs.iter().map(|f| f.bytes.len()).sum();
+    let link_bytes: usize = inputs.iter().map(|f| f.link_bytes).sum();
     log.event(
         HbsStep::WriteInputFile,
-        format!("{} files, {input_bytes} bytes, MD5 recorded", inputs.len()),
+        format!("{} files, {link_bytes} bytes, MD5 recorded", inputs.len()),
     );
-    log.duration_s += input_bytes as f64 / params.link_bytes_per_s;
+    log.duration_s += link_bytes as f64 / params.link_bytes_per_s;
     log.event(
         HbsStep::TransferToHbs,
-        format!("{input_bytes} bytes at {} B/s", params.link_bytes_per_s),
+        format!("{link_bytes} bytes at {} B/s", params.link_bytes_per_s),
     );
     let mut stored: Vec<HbsFile> = inputs.to_vec();
     // Files whose checksum is to be checked before the next run: all before run 1; before run

@@ -10,6 +10,10 @@
 //!    scenario (one world, one orbital map); the rover seed changes every sol.
 //! 2. **`MOB_WRITE_ONBD_INPUT_FILE`** — the pose file (prior, search radius, method) and the
 //!    images and map tiles as [`HbsFile`]s with their checksums ([`encode_u8`], [`encode_f32`]).
+//!    Each crosses the link at its flight size: the post-drive NavCam images
+//!    ([`FLIGHT_NAVCAM_IMAGES_BYTES`], which the rendered orthomosaic and rover DEM stand in
+//!    for), the orbital map chip and the input file at their own length — about 18 MB, 30 min
+//!    at the flown 10 KB/s ([`FLIGHT_SIZE_LINK_BYTES`]).
 //! 3. **The HBS activity** ([`crate::hbs::run_activity`]) — transfer, run, reboot, run, compare,
 //!    with the matcher ([`localize`]) as the algorithm; the rover's validity check accepts only a
 //!    well-formed result that passed the matcher's own checks with σ within the limit.
@@ -29,7 +33,9 @@
 //! differ run to run). It is [`OnboardSettings::hbs_slowdown`] × [`MEASURED_FLIGHT_SIZE_RUN_S`]
 //! (one flight-size localization on the development machine, measured by `cargo bench --bench
 //! localize`) × the run's work relative to flight size (search-window area). Link time is the
-//! real byte count of the input and result files at [`HbsParams::link_bytes_per_s`].
+//! flight size of the input files ([`HbsFile::link_bytes`]) and the real size of the result
+//! files at [`HbsParams::link_bytes_per_s`]: at 10 KB/s a flight-size run's inputs take
+//! [`FLIGHT_TRANSFER_S`], the paper's 30 minutes; a wider search sends a larger map chip.
 
 use std::sync::Arc;
 
@@ -47,27 +53,15 @@ use crate::synthetic::{
 };
 
 mod cache;
+mod flight;
 
 use cache::Rendered;
 pub use cache::{DEFAULT_RECENT_RENDERS, OnboardCache};
-
-/// One localization at flight size (240² orthomosaic, ±30 m at 25 cm, DEM, sub-pixel) on the
-/// development machine, seconds: `cargo bench --bench localize` group B2, 1 thread (see
-/// BENCHMARKS.md).
-pub const MEASURED_FLIGHT_SIZE_RUN_S: f64 = 0.0182;
-
-/// Flight-size localization on the HBS Snapdragon 801, seconds ("Phase 2 ran global
-/// localization in only 32s", paper 000 §4).
-pub const FLIGHT_RUN_S: f64 = 32.0;
-
-/// Bytes sent to the co-processor by a flight-size run (30 m radius): the pose file, the
-/// orthomosaic and rover DEM with their masks, the orbital tile and DEM (the pose file's length
-/// varies by a few bytes with its numbers) — checked by the test
-/// `corrects_a_drifted_estimate_through_the_hbs`.
-pub const FLIGHT_SIZE_INPUT_BYTES: usize = 739_531;
-
-/// Search radius of the flight-size run, metres (paper 000 §4).
-const FLIGHT_SEARCH_RADIUS_M: f64 = 30.0;
+use flight::FLIGHT_SEARCH_RADIUS_M;
+pub use flight::{
+    FLIGHT_LINK_BYTES_PER_S, FLIGHT_NAVCAM_IMAGES_BYTES, FLIGHT_RUN_S, FLIGHT_SIZE_INPUT_BYTES,
+    FLIGHT_SIZE_LINK_BYTES, FLIGHT_SIZE_MAP_BYTES, FLIGHT_TRANSFER_S, MEASURED_FLIGHT_SIZE_RUN_S,
+};
 
 /// Settings of the onboard localization activity (plain struct; defaults on each field).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -137,8 +131,10 @@ pub struct OnboardRun {
     pub lost_reason: Option<LostReason>,
     /// The HBS activity log (steps, upsets, duration); empty when imaging failed.
     pub log: ActivityLog,
-    /// Bytes sent to the HBS.
+    /// Bytes of the simulated input files.
     pub input_bytes: usize,
+    /// Bytes that crossed the link to the HBS, at flight size ([`HbsFile::link_bytes`]).
+    pub link_bytes: usize,
 }
 
 /// Why an onboard localization was lost (a bad outcome, logged; the rover drives on).
@@ -415,6 +411,7 @@ pub fn run_onboard_with(
             }),
         },
         input_bytes: 0,
+        link_bytes: 0,
     };
     let params = MatchParams {
         search_radius_m: radius_m,
@@ -467,8 +464,11 @@ pub fn run_onboard_with(
             "onbd_input.txt",
             pose_file(req.prior_m, radius_m, params.method),
         ),
-        HbsFile::new("ortho.bin", encode_u8(&rover.ortho, &rover.valid)),
-        HbsFile::new("rover_dem.bin", encode_f32(&rover.dem, &rover.dem_valid)),
+        // The orthomosaic and rover DEM stand in for the NavCam images they are built from,
+        // which cross the link at their flight size.
+        HbsFile::new("ortho.bin", encode_u8(&rover.ortho, &rover.valid))
+            .with_link_bytes(FLIGHT_NAVCAM_IMAGES_BYTES),
+        HbsFile::new("rover_dem.bin", encode_f32(&rover.dem, &rover.dem_valid)).with_link_bytes(0),
         HbsFile::new(
             "map_tile.bin",
             encode_u8(
@@ -482,6 +482,7 @@ pub fn run_onboard_with(
         ),
     ];
     run.input_bytes = inputs.iter().map(|f| f.bytes.len()).sum();
+    run.link_bytes = inputs.iter().map(|f| f.link_bytes).sum();
     // The fault-free run, once. The matcher is deterministic, so an HBS run on intact inputs
     // returns exactly these bytes; only a run on inputs an upset changed is computed again.
     let fault_free = localize(
@@ -538,6 +539,7 @@ pub fn run_onboard_with(
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]
 mod tests {
+    use super::flight::FLIGHT_SIZE_POSE_BYTES;
     use super::*;
     use crate::benchmark_set::{BenchmarkMaps, TerrainKind};
     use crate::hbs::HbsStep;
@@ -611,13 +613,32 @@ mod tests {
         assert_eq!(steps.first(), Some(&HbsStep::WriteInputFile));
         assert_eq!(steps.last(), Some(&HbsStep::ApplyLocalization));
         // Flight-size run: the scaled run time is the paper's 32 s, twice, plus link and reboot.
-        let link_s = run.input_bytes as f64 / 10_000.0;
+        let link_s = run.link_bytes as f64 / 10_000.0;
         assert!(run.log.duration_s > 2.0 * FLIGHT_RUN_S + 120.0 + link_s - 1e-6);
         assert!(
             run.input_bytes.abs_diff(FLIGHT_SIZE_INPUT_BYTES) < 64,
             "{}",
             run.input_bytes
         );
+        // The inputs cross the link in the paper's 30 minutes at 10 KB/s.
+        // The map chip: everything but the pose file, the orthomosaic and the rover DEM.
+        let pose_bytes = run.input_bytes - FLIGHT_SIZE_MAP_BYTES - 115_208 - 18_008;
+        assert!(
+            pose_bytes.abs_diff(FLIGHT_SIZE_POSE_BYTES) < 16,
+            "{pose_bytes}"
+        );
+        assert!(
+            run.link_bytes.abs_diff(FLIGHT_SIZE_LINK_BYTES) < 64,
+            "{}",
+            run.link_bytes
+        );
+        let transfer = run
+            .log
+            .events
+            .iter()
+            .find(|e| e.step == HbsStep::TransferToHbs);
+        let transfer_s = transfer.map(|e| e.t_s).unwrap_or_default();
+        assert!((transfer_s - FLIGHT_TRANSFER_S).abs() < 0.1, "{transfer_s}");
         // Same request, same run.
         let again = run_onboard(
             layers,

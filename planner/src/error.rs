@@ -34,6 +34,20 @@ pub enum PlanError {
         /// What a valid value looks like.
         expected: &'static str,
     },
+    /// An activity on the `hbs_link` timeline alone has a field only main-timeline activities
+    /// may have (see [`Timeline`](crate::Timeline)): a drive, data, a downlink or a
+    /// state-based window. `main_and_hbs_link` allows them.
+    #[error(
+        "activity `{activity}` is on the hbs_link timeline: field `{field}` must be {expected} (or use timeline main_and_hbs_link)"
+    )]
+    InvalidLinkActivity {
+        /// The activity id.
+        activity: String,
+        /// Field at fault, e.g. `data_mb`.
+        field: &'static str,
+        /// What a link activity has instead.
+        expected: &'static str,
+    },
     /// `latest_start_s` is before `earliest_start_s`.
     #[error(
         "activity `{activity}`: latest_start_s = {latest_start_s} is before earliest_start_s = {earliest_start_s}"

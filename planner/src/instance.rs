@@ -6,7 +6,7 @@
 
 use crate::error::PlanError;
 use crate::instance_checks::{campaign_curve, check_activity, check_problem, find_cycle};
-use crate::problem::{ActivityKind, Problem};
+use crate::problem::{ActivityKind, Problem, Timeline};
 use crate::value::{MAX_TASKS, micro};
 
 /// Handle of a [`Task`] in an [`Instance`] (its index).
@@ -58,6 +58,8 @@ pub struct Task {
     pub drive_m: f64,
     /// State-based window on metres driven at the start.
     pub driven_window_m: Option<[f64; 2]>,
+    /// The timeline(s) it holds.
+    pub timeline: Timeline,
 }
 
 impl Task {
@@ -123,6 +125,11 @@ pub struct Instance {
     activity_tasks: Vec<Vec<TaskId>>,
     /// The mandatory tasks.
     mandatory: Vec<TaskId>,
+    /// Whether any task holds the HBS link (otherwise every task is on the main timeline and
+    /// the single-timeline rules apply unchanged).
+    uses_link: bool,
+    /// Every task, each after its preconditions.
+    topo: Vec<TaskId>,
 }
 
 impl Instance {
@@ -236,6 +243,7 @@ impl Instance {
                 campaign: campaign_idx[ai],
                 drive_m: 0.0,
                 driven_window_m: a.driven_window_m,
+                timeline: a.timeline,
             };
             match &a.kind {
                 ActivityKind::Task { .. } => tasks.push(base),
@@ -280,12 +288,16 @@ impl Instance {
             .map(TaskId)
             .filter(|t| tasks[t.index()].mandatory)
             .collect();
+        let uses_link = tasks.iter().any(|t| t.timeline.uses_link());
+        let topo = topological_order(&tasks);
         Ok(Self {
             problem: problem.clone(),
             tasks,
             campaigns,
             activity_tasks,
             mandatory,
+            uses_link,
+            topo,
         })
     }
 
@@ -325,6 +337,18 @@ impl Instance {
         &self.activity_tasks[activity]
     }
 
+    /// Whether any task holds the HBS link ([`Timeline::HbsLink`] or
+    /// [`Timeline::MainAndHbsLink`]). When none does, every rule is the single timeline's.
+    #[must_use]
+    pub fn uses_link(&self) -> bool {
+        self.uses_link
+    }
+
+    /// Every task, each after its preconditions (the precondition graph is acyclic).
+    pub(crate) fn topological_order(&self) -> &[TaskId] {
+        &self.topo
+    }
+
     /// The mandatory tasks, in id order.
     #[must_use]
     pub fn mandatory_tasks(&self) -> &[TaskId] {
@@ -337,6 +361,32 @@ impl Instance {
         let a = self.problem.activities.iter().position(|a| a.id == id)?;
         self.activity_tasks[a].last().copied()
     }
+}
+
+/// Every task, each after its preconditions (Kahn's algorithm; ties by id). Preconditions
+/// form no cycle (checked before the drives are split; a split drive is a chain).
+fn topological_order(tasks: &[Task]) -> Vec<TaskId> {
+    let n = tasks.len();
+    let mut waiting: Vec<usize> = tasks.iter().map(|t| t.preconditions.len()).collect();
+    let mut successors: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for (i, t) in tasks.iter().enumerate() {
+        for q in &t.preconditions {
+            successors[q.index()].push(i);
+        }
+    }
+    let mut ready: std::collections::BTreeSet<usize> =
+        (0..n).filter(|&i| waiting[i] == 0).collect();
+    let mut out = Vec::with_capacity(n);
+    while let Some(i) = ready.pop_first() {
+        out.push(TaskId(i as u32));
+        for &j in &successors[i] {
+            waiting[j] -= 1;
+            if waiting[j] == 0 {
+                ready.insert(j);
+            }
+        }
+    }
+    out
 }
 
 #[cfg(test)]

@@ -3,7 +3,7 @@
 
 use crate::error::PlanError;
 use crate::instance::CampaignCurve;
-use crate::problem::{ActivityKind, Problem};
+use crate::problem::{ActivityKind, Problem, Timeline};
 use crate::value::{MAX_TASKS, MAX_TIERS, MAX_UTILITY, micro};
 
 pub(crate) fn check_problem(p: &Problem) -> Result<(), PlanError> {
@@ -176,6 +176,32 @@ pub(crate) fn check_activity(p: &Problem, a: &crate::problem::Activity) -> Resul
             lo,
             "finite [lo, hi] with 0 <= lo <= hi m",
         );
+    }
+    if a.timeline == Timeline::HbsLink {
+        // A link activity overlaps main-timeline ones: keeping data, distance and state-based
+        // windows on the main timeline keeps them in time order (see `Timeline`).
+        let bad_link = |field, expected| {
+            Err(PlanError::InvalidLinkActivity {
+                activity: a.id.clone(),
+                field,
+                expected,
+            })
+        };
+        if matches!(a.kind, ActivityKind::Drive(_)) {
+            return bad_link("kind", "a task: a drive holds the main timeline");
+        }
+        if a.data_mb != 0.0 {
+            return bad_link("data_mb", "0: data products belong on the main timeline");
+        }
+        if a.downlink_mb != 0.0 {
+            return bad_link("downlink_mb", "0: downlinks belong on the main timeline");
+        }
+        if a.driven_window_m.is_some() {
+            return bad_link(
+                "driven_window_m",
+                "absent: state-based windows belong on the main timeline",
+            );
+        }
     }
     Ok(())
 }

@@ -11,7 +11,8 @@
 //! | [`plan`], [`plan_from`] | branch and bound from the start of the sol, or from a [`State`] (replanning) |
 //! | [`SearchSettings`], [`BoundKind`] | budgets and the optimistic bound |
 //! | [`PlanOutcome`], [`Plan`], [`Value`] | the best plan, its lexicographic value, the best bound and the gap |
-//! | [`validate_plan`] | an independent checker listing every [`Violation`] |
+//! | [`Timeline`] | the main sequencing timeline and the HBS link: an activity on the link alone runs in parallel with main-timeline ones |
+//! | [`validate_plan`], [`step_resources`] | an independent checker listing every [`Violation`]; its re-simulation step by step |
 //! | [`repair`], [`RepairOutcome`], [`Blocker`] | shift a plan after a slip, or say why a replan is needed |
 //! | [`periodic_instances`], [`state_based_instances`], [`clip_to_window`] | build periodic and state-based campaign instances; clip them to the sol |
 //! | [`generate`] | seeded random instances |
@@ -48,9 +49,9 @@
 //!
 //! | Aspect | Modelled | Simplified / missing |
 //! |---|---|---|
-//! | Time | integer seconds after midnight; one activity at a time | no parallel activities |
-//! | Waiting | a task starts at the earliest second its window, its predecessor and the battery allow (waiting to recharge included); complete for this model, see [`State`] | — |
-//! | Energy | battery with capacity (recharge clipped), constant net recharge `recharge_w`, constant power per activity, never below 0 | no solar profile over the sol, no regenerative-sleep activity |
+//! | Time | integer seconds after midnight; one activity at a time per [`Timeline`]: the main one, and the HBS link, whose activities run in parallel with main-timeline ones (preconditions wait for their predecessors' ends) | no other parallel resource |
+//! | Waiting | a task starts at the earliest second its window, its predecessor and the battery allow (waiting to recharge included); complete for this model, see [`State`] | on two timelines, a task the battery cannot carry while another runs waits for that one's end, then for recharge (a rule, not a search over waits) |
+//! | Energy | battery with capacity (recharge clipped), constant net recharge `recharge_w`, constant power per activity (overlapping activities' powers add), never below 0 | no solar profile over the sol, no regenerative-sleep activity |
 //! | Data | produced at an activity's end, freed by downlinks (comm passes) | downlink at the pass's end, not during it |
 //! | Mandatory | tasks every plan must hold (comm passes at fixed times) | — |
 //! | Auxiliary | preconditions (heating before a drive) | no maximum gap between heating and use |
@@ -120,9 +121,9 @@ pub use error::PlanError;
 pub use generate::{GeneratorSettings, b6_problem, generate};
 pub use instance::{CampaignCurve, Instance, Task, TaskId};
 pub use plan::{BoundKind, Plan, PlanOutcome, PlanStatus, PlanStep, SearchSettings, SearchStats};
-pub use problem::{Activity, ActivityKind, Campaign, CampaignIntent, Drive, Problem};
+pub use problem::{Activity, ActivityKind, Campaign, CampaignIntent, Drive, Problem, Timeline};
 pub use repair::{RepairOutcome, repair};
 pub use search::{plan, plan_from};
-pub use state::{Blocker, DATA_EPS_MB, DISTANCE_EPS_M, ENERGY_EPS_WH, State};
-pub use validate::{Violation, validate_plan};
+pub use state::{Blocker, DATA_EPS_MB, DISTANCE_EPS_M, ENERGY_EPS_WH, Running, State};
+pub use validate::{StepResources, Violation, step_resources, validate_plan};
 pub use value::{MAX_TASKS, MAX_TIERS, MAX_UTILITY, MICRO_PER_POINT, Value};

@@ -94,6 +94,74 @@ pub struct Activity {
     /// state-based sampling). (default: none)
     #[serde(default)]
     pub driven_window_m: Option<[f64; 2]>,
+    /// The sequencing timeline(s) the activity holds while it runs: `"main"`, `"hbs_link"`
+    /// (runs while main-timeline activities run) or `"main_and_hbs_link"`; see [`Timeline`].
+    /// (default: `"main"`)
+    #[serde(default, skip_serializing_if = "Timeline::is_main")]
+    pub timeline: Timeline,
+}
+
+/// The exclusive resources an activity can hold: the rover's main sequencing timeline and the
+/// serial link to the Helicopter Base Station co-processor (paper 000 §4, §6: the inputs of an
+/// onboard localization take ~30 min to cross it, "in parallel with other ongoing rover
+/// activities").
+///
+/// Two activities that hold a common timeline never overlap; an activity on the link alone
+/// runs while main-timeline activities run. Preconditions still order activities across
+/// timelines (a co-processor run waits for its transfer to end). Every activity of a problem
+/// that uses only [`Timeline::Main`] is planned exactly as on a single timeline.
+///
+/// An activity on the link alone moves files and runs the co-processor: it produces and
+/// downlinks no data, is not a drive and has no state-based window (checked by
+/// [`Instance::new`](crate::Instance::new)). Its power adds to that of the main-timeline
+/// activity it overlaps.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Timeline {
+    /// The rover's main sequencing timeline, one activity at a time (the default).
+    #[default]
+    Main,
+    /// The link to the co-processor (and the co-processor behind it) alone, one activity at
+    /// a time, concurrently with the main timeline.
+    HbsLink,
+    /// Both timelines at once (an activity that needs the rover's sequencing and the link).
+    MainAndHbsLink,
+}
+
+impl Timeline {
+    /// Whether this is [`Timeline::Main`] (the serde default, left out when serialising).
+    #[must_use]
+    pub fn is_main(&self) -> bool {
+        *self == Timeline::Main
+    }
+
+    /// Whether the activity holds the main timeline.
+    #[must_use]
+    pub fn uses_main(self) -> bool {
+        self != Timeline::HbsLink
+    }
+
+    /// Whether the activity holds the HBS link.
+    #[must_use]
+    pub fn uses_link(self) -> bool {
+        self != Timeline::Main
+    }
+
+    /// The name in problem files: `main`, `hbs_link` or `main_and_hbs_link`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Timeline::Main => "main",
+            Timeline::HbsLink => "hbs_link",
+            Timeline::MainAndHbsLink => "main_and_hbs_link",
+        }
+    }
+
+    /// Whether two activities on `self` and `other` may not overlap (they share a timeline).
+    #[must_use]
+    pub fn shares(self, other: Timeline) -> bool {
+        (self.uses_main() && other.uses_main()) || (self.uses_link() && other.uses_link())
+    }
 }
 
 fn default_tier() -> u8 {
@@ -232,6 +300,7 @@ impl Activity {
             tier: 1,
             utility,
             driven_window_m: None,
+            timeline: Timeline::Main,
         }
     }
 

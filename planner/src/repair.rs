@@ -1,7 +1,9 @@
 //! Plan repair after an activity ends late (or early), without search.
 //!
 //! The tasks after the slipped one keep their order and are re-timed by the same
-//! earliest-start rule as the search (waiting for energy when needed). If any of them no
+//! earliest-start rule as the search (waiting for energy when needed). On two timelines the
+//! state handed back is at the slipped task's start or later (the slipped task may still be
+//! running: [`State::running`]), and the re-timed steps are sorted by start. If any of them no
 //! longer fits — its window has passed, the battery or data volume would be violated, or a
 //! mandatory task would be lost — repair gives up and hands back the state after the slipped
 //! task, from which [`plan_from`](crate::plan_from) replans everything still undone.
@@ -84,16 +86,14 @@ pub fn repair(
         Some(actual_end_s - late.start_s),
     );
     done.push(late.task);
+    // On two timelines the state is taken no earlier than the late step's start (it has
+    // run): nothing is placed before it. On one, at its end.
+    cur.advance_to(instance, late.start_s);
     // A slip long enough to drain the modelled battery: the executive must replan from
     // measured telemetry; hand back an empty (not negative) battery.
-    let drained = cur.energy_wh < -ENERGY_EPS_WH;
-    let state = State {
-        time_s: cur.time_s,
-        energy_wh: cur.energy_wh.max(0.0),
-        data_mb: cur.data_mb,
-        driven_m: cur.driven_m,
-        done,
-    };
+    let drained = cur.lowest_energy_wh(instance) < -ENERGY_EPS_WH;
+    let mut state = cur.state(done);
+    state.energy_wh = state.energy_wh.max(0.0);
     if drained {
         return Ok(RepairOutcome::ReplanNeeded {
             state,
@@ -121,9 +121,11 @@ pub fn repair(
         steps.push(PlanStep {
             task: s.task,
             start_s: new_start,
-            end_s: cur.time_s,
+            end_s: new_start + instance.task(s.task).duration_s,
         });
     }
+    // Re-timed steps on two timelines may change their start order.
+    steps.sort_by_key(|s| s.start_s);
     Ok(RepairOutcome::Repaired {
         state,
         plan: Plan { steps },

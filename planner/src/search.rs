@@ -63,6 +63,50 @@ pub fn plan_from(
     Ok(Search::new(instance, settings).run(root))
 }
 
+/// What the dominance memo keeps of a node (its done set is the key).
+struct MemoEntry {
+    /// When the main timeline is free.
+    time_s: i64,
+    /// Energy at `energy_t_s`.
+    energy_wh: f64,
+    data_mb: f64,
+    /// End of each task (two timelines; empty on one).
+    ends_s: Vec<i64>,
+    energy_t_s: i64,
+    link_free_s: i64,
+    /// No task runs after `energy_t_s`.
+    idle: bool,
+}
+
+impl MemoEntry {
+    /// Whether this node can run every completion of `other` (same done set) at least as
+    /// well. On one timeline: no later, no less energy, no more data. On two: the same end
+    /// times (so the same running tasks and energy instant) with no less energy and no more
+    /// data; or no task running here, both timelines free no later, and the battery, idling
+    /// to `other`'s energy instant, at least `other`'s there — `other`'s running tasks only
+    /// hold its timelines longer and drain its battery further.
+    fn dominates(&self, other: &MemoEntry, inst: &Instance) -> bool {
+        if self.data_mb > other.data_mb {
+            return false;
+        }
+        if !inst.uses_link() {
+            return self.time_s <= other.time_s && self.energy_wh >= other.energy_wh;
+        }
+        if self.ends_s == other.ends_s && self.energy_t_s == other.energy_t_s {
+            return self.energy_wh >= other.energy_wh;
+        }
+        let p = inst.problem();
+        let idled = |e: f64, dt_s: i64| {
+            (e + p.recharge_w * dt_s as f64 / 3600.0).min(p.battery_capacity_wh)
+        };
+        self.idle
+            && self.energy_t_s <= other.energy_t_s
+            && self.time_s <= other.time_s
+            && self.link_free_s <= other.link_free_s
+            && idled(self.energy_wh, other.energy_t_s - self.energy_t_s) >= other.energy_wh
+    }
+}
+
 #[derive(Clone)]
 struct Node {
     cur: Cursor,
@@ -79,8 +123,8 @@ struct Search<'a> {
     stats: SearchStats,
     best: Option<(Value, Vec<PlanStep>)>,
     serial: u64,
-    /// Per set of done tasks, the Pareto front of (end time, energy, data) reached so far.
-    memo: HashMap<TaskSet, Vec<(i64, f64, f64)>>,
+    /// Per set of done tasks, the Pareto front of the nodes reached so far.
+    memo: HashMap<TaskSet, Vec<MemoEntry>>,
     memo_entries: usize,
 }
 
@@ -101,20 +145,29 @@ impl<'a> Search<'a> {
     /// Whether a node already reached the same done set no later, with no less energy and
     /// no more data. Such a node can run every completion of `cur` (idle until `cur`'s time,
     /// then follow it) and has the same value, so `cur` is redundant. Records `cur`
-    /// otherwise.
+    /// otherwise. On two timelines ([`MemoEntry::dominates`]) the earlier node must have no
+    /// task still running, or else the same end times, running tasks and energy instant.
     fn dominated(&mut self, cur: &Cursor) -> bool {
         if !self.settings.dominance {
             return false;
         }
-        let key = (cur.time_s, cur.energy_wh, cur.data_mb);
-        let le = |a: &(i64, f64, f64), b: &(i64, f64, f64)| a.0 <= b.0 && a.1 >= b.1 && a.2 <= b.2;
+        let key = || MemoEntry {
+            time_s: cur.time_s,
+            energy_wh: cur.energy_wh,
+            data_mb: cur.data_mb,
+            ends_s: cur.ends_s.clone(),
+            energy_t_s: cur.energy_t_s,
+            link_free_s: cur.link_free_s,
+            idle: cur.running.is_empty(),
+        };
         match self.memo.get_mut(&cur.done) {
             Some(front) => {
-                if front.iter().any(|e| le(e, &key)) {
+                let key = key();
+                if front.iter().any(|e| e.dominates(&key, self.inst)) {
                     return true;
                 }
                 let before = front.len();
-                front.retain(|e| !le(&key, e));
+                front.retain(|e| !key.dominates(e, self.inst));
                 self.memo_entries -= before - front.len();
                 if self.memo_entries < MAX_MEMO_ENTRIES {
                     front.push(key);
@@ -123,7 +176,7 @@ impl<'a> Search<'a> {
             }
             None => {
                 if self.memo_entries < MAX_MEMO_ENTRIES {
-                    self.memo.insert(cur.done.clone(), vec![key]);
+                    self.memo.insert(cur.done.clone(), vec![key()]);
                     self.memo_entries += 1;
                 }
             }
@@ -203,7 +256,7 @@ impl<'a> Search<'a> {
             .map(|n| n.bound)
             .max();
         self.stats.total_time = clock.elapsed();
-        let (status, value, steps) = match self.best.take() {
+        let (status, value, mut steps) = match self.best.take() {
             Some((v, s)) => (
                 if exhausted || frontier_bound.is_none() {
                     PlanStatus::Optimal
@@ -223,6 +276,9 @@ impl<'a> Search<'a> {
                 Vec::new(),
             ),
         };
+        // On two timelines a plan may append a link task after a main one that starts later:
+        // steps are reported in start order (a stable sort; already so on one timeline).
+        steps.sort_by_key(|s| s.start_s);
         let best_bound = match (status, frontier_bound) {
             (PlanStatus::Optimal, _) | (_, None) => value,
             (_, Some(b)) => b.max(value),
@@ -258,7 +314,7 @@ impl<'a> Search<'a> {
             let step = PlanStep {
                 task: t,
                 start_s: start,
-                end_s: cur.time_s,
+                end_s: start + self.inst.task(t).duration_s,
             };
             self.stats.nodes_generated += 1;
             self.offer(&cur, || with(step));
@@ -308,7 +364,7 @@ impl<'a> Search<'a> {
                 steps.push(PlanStep {
                     task: t,
                     start_s: s,
-                    end_s: cur.time_s,
+                    end_s: s + self.inst.task(t).duration_s,
                 });
             }
             self.offer(&cur, || steps.clone());

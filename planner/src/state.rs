@@ -12,11 +12,27 @@
 //! while data volume and metres driven depend only on the order. Windows are absolute (a
 //! periodic campaign's instances are due at fixed times), so an earlier end never closes a
 //! later window. Searching over orders with this rule is thus complete.
+//!
+//! ## Two timelines
+//! When some task holds the HBS link ([`Timeline`](crate::Timeline)), a task starts at the earliest
+//! second its window, the timelines it holds, the *ends* of its preconditions and the battery
+//! allow. The timelines are exclusive; a task on the link alone overlaps main-timeline tasks, and
+//! their powers add. The battery is then simulated piecewise: the cursor keeps the energy at the
+//! earliest time any further task could start, and the tasks still running after it; every append
+//! re-simulates them with the new task to the last end, so a drain that would empty the battery
+//! while two tasks overlap is refused. Adding a task only lowers the energy later (powers are ≥ 0),
+//! so a refusal is final. Appending the tasks of any schedule in start order reproduces it (a
+//! left-shifted one exactly); where the battery makes a task wait while a task of the other
+//! timeline runs, it waits for that task's end, then for recharge — a rule, not an exhaustive
+//! search over waits. Data, distance and state-based windows stay on the main timeline (link-only
+//! tasks have none), so they keep the order rule above.
 
 use crate::error::PlanError;
-use crate::instance::{Instance, TaskId};
+use crate::instance::{Instance, Task, TaskId};
 use crate::value::Value;
 use serde::{Deserialize, Serialize};
+
+mod timelines;
 
 /// Energy slack, Wh: a battery at `-ENERGY_EPS_WH` still counts as empty, not overdrawn.
 pub const ENERGY_EPS_WH: f64 = 1e-9;
@@ -38,9 +54,52 @@ pub struct State {
     pub driven_m: f64,
     /// Tasks already done (they count towards preconditions, campaigns and value).
     pub done: Vec<TaskId>,
+    /// Tasks of `done` still running after `time_s` — only where two timelines overlap (see
+    /// [`Timeline`](crate::Timeline)): each holds its timelines and draws its power until its
+    /// end. `energy_wh`, `data_mb` and `driven_m` already count them, except their draw after
+    /// `time_s`. (default: none)
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub running: Vec<Running>,
+}
+
+/// A task started before a [`State`]'s `time_s` that ends after it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Running {
+    /// The task (also in the state's `done`).
+    pub task: TaskId,
+    /// When it started, s after midnight.
+    pub start_s: i64,
+    /// When it ends, s after midnight.
+    pub end_s: i64,
 }
 
 impl State {
+    /// The same state at `t_s`, nothing started meanwhile: the battery recharges while idle
+    /// and the [`running`](State::running) tasks draw until they end. On two timelines the
+    /// state's time may come out later than `t_s`: the earliest time any task could start.
+    ///
+    /// # Errors
+    /// [`PlanError::InvalidState`] if this state is malformed for `instance`, or `t_s` is
+    /// before its time or after the end of the sol.
+    pub fn advanced_to(&self, instance: &Instance, t_s: i64) -> Result<State, PlanError> {
+        let mut cur = Cursor::new(instance, self)?;
+        if t_s < self.time_s || t_s > instance.problem().end_s {
+            return Err(PlanError::InvalidState {
+                field: "time_s",
+                value: t_s as f64,
+                expected: "a time from the state's time to the end of the sol",
+            });
+        }
+        if instance.uses_link() {
+            cur.advance_to(instance, t_s);
+        } else {
+            cur.energy_wh = Cursor::idle(instance, cur.energy_wh, t_s - cur.time_s);
+            cur.time_s = t_s;
+            cur.energy_t_s = t_s;
+        }
+        Ok(cur.state(self.done.clone()))
+    }
+
     /// The state at the start of `instance`'s window.
     #[must_use]
     pub fn initial(instance: &Instance) -> Self {
@@ -51,6 +110,7 @@ impl State {
             data_mb: p.initial_data_mb,
             driven_m: 0.0,
             done: Vec::new(),
+            running: Vec::new(),
         }
     }
 }
@@ -105,7 +165,9 @@ impl TaskSet {
 /// The search's view of a [`State`]: the same quantities plus derived bookkeeping.
 #[derive(Debug, PartialEq)]
 pub(crate) struct Cursor {
+    /// When the main timeline is free, s (on a single timeline: the end of the last task).
     pub time_s: i64,
+    /// Battery energy at `energy_t_s`, Wh.
     pub energy_wh: f64,
     pub data_mb: f64,
     pub driven_m: f64,
@@ -115,6 +177,15 @@ pub(crate) struct Cursor {
     /// Mandatory tasks not yet done.
     pub mandatory_left: u32,
     pub value: Value,
+    /// When the HBS link is free, s (two timelines only).
+    pub link_free_s: i64,
+    /// The time of `energy_wh`: no further task starts before it (`time_s` on one timeline).
+    pub energy_t_s: i64,
+    /// Tasks still running after `energy_t_s` (two timelines only).
+    pub running: Vec<Running>,
+    /// End of each task, s, `i64::MIN` until done or when done in the start state (two
+    /// timelines only; empty otherwise).
+    pub ends_s: Vec<i64>,
 }
 
 impl Clone for Cursor {
@@ -128,6 +199,10 @@ impl Clone for Cursor {
             counts: self.counts.clone(),
             mandatory_left: self.mandatory_left,
             value: self.value,
+            link_free_s: self.link_free_s,
+            energy_t_s: self.energy_t_s,
+            running: self.running.clone(),
+            ends_s: self.ends_s.clone(),
         }
     }
     // Field by field, reusing the vectors' buffers.
@@ -140,6 +215,10 @@ impl Clone for Cursor {
         self.counts.clone_from(&source.counts);
         self.mandatory_left = source.mandatory_left;
         self.value = source.value;
+        self.link_free_s = source.link_free_s;
+        self.energy_t_s = source.energy_t_s;
+        self.running.clone_from(&source.running);
+        self.ends_s.clone_from(&source.ends_s);
     }
 }
 
@@ -183,6 +262,14 @@ impl Cursor {
             counts: vec![0; inst.campaigns().len()],
             mandatory_left: inst.tasks().iter().filter(|t| t.mandatory).count() as u32,
             value: Value::ZERO,
+            link_free_s: state.time_s,
+            energy_t_s: state.time_s,
+            running: Vec::new(),
+            ends_s: if inst.uses_link() {
+                vec![i64::MIN; n]
+            } else {
+                Vec::new()
+            },
         };
         for &t in &state.done {
             if t.index() >= n {
@@ -193,7 +280,46 @@ impl Cursor {
             }
             c.mark_done(inst, t);
         }
+        if !inst.uses_link() {
+            if let Some(r) = state.running.first() {
+                return bad(
+                    "running",
+                    f64::from(r.task.0),
+                    "no running task: only tasks on the hbs_link timeline overlap others",
+                );
+            }
+            return Ok(c);
+        }
+        for r in &state.running {
+            if r.task.index() >= n || !c.done.contains(r.task) {
+                return bad("running", f64::from(r.task.0), "tasks of `done`");
+            }
+            if !(r.start_s <= state.time_s && r.end_s > r.start_s) {
+                return bad(
+                    "running",
+                    r.end_s as f64,
+                    "start_s <= time_s and end_s > start_s",
+                );
+            }
+            c.hold(inst.task(r.task).timeline, r.task, r.end_s);
+            if r.end_s > state.time_s {
+                c.running.push(*r);
+            }
+        }
+        c.settle(inst, state.time_s);
         Ok(c)
+    }
+
+    /// The state this cursor stands for, with `done` in the order the tasks were done.
+    pub(crate) fn state(&self, done: Vec<TaskId>) -> State {
+        State {
+            time_s: self.energy_t_s,
+            energy_wh: self.energy_wh,
+            data_mb: self.data_mb,
+            driven_m: self.driven_m,
+            done,
+            running: self.running.clone(),
+        }
     }
 
     /// Energy after idling `dt_s` seconds from `energy_wh`.
@@ -225,6 +351,40 @@ impl Cursor {
             return Err(Blocker::DrivenWindowMissed);
         }
         let d = task.duration_s;
+        let start = if inst.uses_link() {
+            self.battery_start_timelines(inst, task, t)?
+        } else {
+            self.battery_start(inst, task)?
+        };
+        let end = start + d;
+        if end > p.end_s {
+            return Err(Blocker::EndOfSol);
+        }
+        if self.data_mb + task.data_mb > p.data_capacity_mb + DATA_EPS_MB {
+            return Err(Blocker::DataVolume);
+        }
+        // A mandatory task whose window closes before `end` could never be appended again
+        // (on two timelines: if it shares one with `t`).
+        if self.mandatory_left > u32::from(task.mandatory) {
+            for &m in inst.mandatory_tasks() {
+                let other = inst.task(m);
+                if m != t
+                    && other.latest_start_s < end
+                    && !self.done.contains(m)
+                    && (!inst.uses_link() || other.timeline.shares(task.timeline))
+                {
+                    return Err(Blocker::MandatoryLost(m));
+                }
+            }
+        }
+        Ok(start)
+    }
+
+    /// On one timeline: the earliest start after the previous task's end and the window's
+    /// start at which the battery, recharging while idle, can carry `task`.
+    fn battery_start(&self, inst: &Instance, task: &Task) -> Result<i64, Blocker> {
+        let p = inst.problem();
+        let d = task.duration_s;
         let mut start = self.time_s.max(task.earliest_start_s);
         if start > task.latest_start_s {
             return Err(Blocker::WindowMissed);
@@ -252,21 +412,6 @@ impl Cursor {
                 }
             }
         }
-        let end = start + d;
-        if end > p.end_s {
-            return Err(Blocker::EndOfSol);
-        }
-        if self.data_mb + task.data_mb > p.data_capacity_mb + DATA_EPS_MB {
-            return Err(Blocker::DataVolume);
-        }
-        // A mandatory task whose window closes before `end` could never be appended again.
-        if self.mandatory_left > u32::from(task.mandatory) {
-            for &m in inst.mandatory_tasks() {
-                if m != t && inst.task(m).latest_start_s < end && !self.done.contains(m) {
-                    return Err(Blocker::MandatoryLost(m));
-                }
-            }
-        }
         Ok(start)
     }
 
@@ -282,13 +427,26 @@ impl Cursor {
         let task = inst.task(t);
         let p = inst.problem();
         let d = duration_s.unwrap_or(task.duration_s);
-        let e = Self::idle(inst, self.energy_wh, start_s - self.time_s);
-        self.energy_wh =
-            (e + (p.recharge_w - task.power_w) * d as f64 / 3600.0).min(p.battery_capacity_wh);
+        if inst.uses_link() {
+            self.hold(task.timeline, t, start_s + d);
+            self.running.push(Running {
+                task: t,
+                start_s,
+                end_s: start_s + d,
+            });
+        } else {
+            let e = Self::idle(inst, self.energy_wh, start_s - self.time_s);
+            self.energy_wh =
+                (e + (p.recharge_w - task.power_w) * d as f64 / 3600.0).min(p.battery_capacity_wh);
+            self.time_s = start_s + d;
+            self.energy_t_s = self.time_s;
+        }
         self.data_mb = (self.data_mb + task.data_mb - task.downlink_mb).max(0.0);
-        self.time_s = start_s + d;
         self.driven_m += task.drive_m;
         self.mark_done(inst, t);
+        if inst.uses_link() {
+            self.settle(inst, i64::MIN);
+        }
     }
 
     fn mark_done(&mut self, inst: &Instance, t: TaskId) {

@@ -22,6 +22,7 @@
 use std::sync::Arc;
 
 use crate::outcome::RejectionReason;
+use localization::hbs::HbsParams;
 use localization::matcher::Method;
 use localization::onboard::{OnboardCache, OnboardSettings};
 use maps::MapLayers;
@@ -39,6 +40,10 @@ pub struct StatisticalLocalizer {
     pub failure_rate: f64,
     /// σ the localizer reports with an accepted result, metres (default: 0.93, the p99 envelope).
     pub reported_sigma_m: f64,
+    /// The co-processor the localization chain is planned on: the statistical model draws the
+    /// result, but the sol plan still holds the chain, its transfer timed at this link rate
+    /// (default: [`HbsParams::default`], 10 KB/s).
+    pub hbs: HbsParams,
 }
 
 impl Default for StatisticalLocalizer {
@@ -48,6 +53,7 @@ impl Default for StatisticalLocalizer {
             p99_error_m: 0.93,
             failure_rate: 0.02,
             reported_sigma_m: 0.93,
+            hbs: HbsParams::default(),
         }
     }
 }
@@ -68,6 +74,24 @@ impl OnboardLocalizer {
         match self {
             OnboardLocalizer::Statistical(_) => "statistical",
             OnboardLocalizer::Imagery(i) => i.settings.matcher.method.name(),
+        }
+    }
+
+    /// The co-processor settings the chain runs (and is planned) with: the link rate, the
+    /// reboot, the run time of the statistical model.
+    #[must_use]
+    pub fn hbs(&self) -> HbsParams {
+        match self {
+            OnboardLocalizer::Statistical(s) => s.hbs,
+            OnboardLocalizer::Imagery(i) => i.settings.hbs,
+        }
+    }
+
+    /// Set the HBS link rate, bytes per second (the scenario's `hbs_link_rate_kb_per_s`).
+    pub fn set_link_bytes_per_s(&mut self, link_bytes_per_s: f64) {
+        match self {
+            OnboardLocalizer::Statistical(s) => s.hbs.link_bytes_per_s = link_bytes_per_s,
+            OnboardLocalizer::Imagery(i) => i.settings.hbs.link_bytes_per_s = link_bytes_per_s,
         }
     }
 }

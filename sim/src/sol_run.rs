@@ -33,12 +33,11 @@ use crate::time::SolSeconds;
 use localization::hbs::HbsStep;
 
 /// Planned durations of the onboard localization chain: the co-processor model's settings,
-/// with the transfer of a flight-size input set (as measured by `localization::onboard`).
+/// with the transfer of a flight-size input set at the scenario's link rate
+/// ([`localization::onboard::FLIGHT_SIZE_LINK_BYTES`]: 30 min at the flown 10 KB/s, 7.5 min
+/// at 40 KB/s).
 pub(crate) fn chain_durations(localizer: &OnboardLocalizer) -> ChainDurations {
-    let hbs = match localizer {
-        OnboardLocalizer::Imagery(i) => i.settings.hbs,
-        OnboardLocalizer::Statistical(_) => localization::hbs::HbsParams::default(),
-    };
+    let hbs = localizer.hbs();
     let run_s = match localizer {
         OnboardLocalizer::Imagery(i) => {
             i.settings.hbs_slowdown * localization::onboard::MEASURED_FLIGHT_SIZE_RUN_S
@@ -46,7 +45,7 @@ pub(crate) fn chain_durations(localizer: &OnboardLocalizer) -> ChainDurations {
         OnboardLocalizer::Statistical(_) => hbs.run_s,
     };
     ChainDurations {
-        transfer_s: (localization::onboard::FLIGHT_SIZE_INPUT_BYTES as f64 / hbs.link_bytes_per_s)
+        transfer_s: (localization::onboard::FLIGHT_SIZE_LINK_BYTES as f64 / hbs.link_bytes_per_s)
             .ceil() as i64,
         run_s: run_s.ceil() as i64,
         reboot_s: hbs.reboot_s.ceil() as i64,
@@ -365,14 +364,16 @@ pub(crate) fn execute_sol(
     run
 }
 
-/// Run `exec` step by step into `run`; returns when the sol's last activity ended.
+/// Run `exec` step by step (in start order; a step on the HBS link overlaps the main-timeline
+/// steps after it) into `run`; returns when the sol's last activity ended.
 fn execute_plan(
     env: &SolEnv<'_>,
     st: &mut SolState<'_>,
     run: &mut SolRun,
     mut exec: SolExecution,
-    mut now: SolSeconds,
+    start: SolSeconds,
 ) -> SolSeconds {
+    let mut last_end = start;
     let c = env.c;
     let mut chain_durations = [None; LOCALIZATION_CHAIN.len()];
     let mut considered: Vec<String> = Vec::new();
@@ -380,11 +381,10 @@ fn execute_plan(
         if inject_revealed(env, st, &mut exec, &step, &mut considered) {
             continue;
         }
-        now = step.end_s;
         let chain_at = LOCALIZATION_CHAIN.iter().position(|&a| a == step.activity);
         if step.activity == "drive" {
             let (end, disruption, outcome) = drive_segment(env, st, run, &step);
-            now = end;
+            last_end = last_end.max(end);
             if disruption.is_some() {
                 run.end_drive(st.rover, &c.model);
             }
@@ -425,15 +425,16 @@ fn execute_plan(
                     .collect(),
                 driven_m: None,
             });
-            now = end;
+            last_end = last_end.max(end);
             exec.complete(end, None, disruption);
         } else {
             let outcome = observe(env, st, &step);
+            last_end = last_end.max(step.end_s);
             exec.complete(step.end_s, outcome, None);
         }
     }
     run.plan = exec.finish();
-    now
+    last_end
 }
 
 /// Drive one segment: its actual end, the disruption if the drive stopped before its

@@ -34,9 +34,14 @@ fn tiers_used(r: &PlanReport) -> usize {
 }
 
 fn activity_label(row: &TimelineRow) -> String {
-    match row.segment {
+    let label = match row.segment {
         Some((k, n, from, to)) => format!("{} {k}/{n} ({from:.0}–{to:.0} m)", row.activity),
         None => row.activity.clone(),
+    };
+    if row.timeline.is_main() {
+        label
+    } else {
+        format!("{label} [{}]", row.timeline.name())
     }
 }
 
@@ -93,8 +98,15 @@ pub fn report_table(r: &PlanReport) -> String {
     }
     let _ = writeln!(
         s,
-        "(times LMST; * mandatory; driven m = metres driven when the step starts; energy and data after the step)\n"
+        "(times LMST; * mandatory; driven m = metres driven when the step starts; energy and data after the step)"
     );
+    if r.rows.iter().any(|row| !row.timeline.is_main()) {
+        let _ = writeln!(
+            s,
+            "([hbs_link] runs in parallel with the main timeline; energy counts every step that overlaps)"
+        );
+    }
+    let _ = writeln!(s);
     let _ = writeln!(
         s,
         "{:<22}  {:<11}  {:>4}  {:>9}  {:>13}",
@@ -192,7 +204,7 @@ pub fn report_json(r: &PlanReport) -> Value {
         .rows
         .iter()
         .map(|row| {
-            json!({
+            let mut step = json!({
                 "start_lmst": lmst(row.start_s),
                 "end_lmst": lmst(row.end_s),
                 "start_s": row.start_s,
@@ -207,7 +219,11 @@ pub fn report_json(r: &PlanReport) -> Value {
                 "driven_at_start_m": row.driven_at_start_m,
                 "energy_wh": row.energy_wh,
                 "data_mb": row.data_mb,
-            })
+            });
+            if !row.timeline.is_main() {
+                step["timeline"] = json!(row.timeline.name());
+            }
+            step
         })
         .collect();
     let campaigns: Vec<Value> = r

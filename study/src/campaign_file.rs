@@ -117,6 +117,12 @@ impl CampaignFile {
                 activity_field(activity, ".preconditions")
             }
             PlanError::UnknownCampaign { activity, .. } => activity_field(activity, ".campaign"),
+            PlanError::InvalidLinkActivity {
+                activity, field, ..
+            } => match *field {
+                "kind" => activity_field(activity, ".drive"),
+                f => activity_field(activity, &format!(".{f}")),
+            },
             PlanError::InvalidCampaign { campaign, .. } => campaign_field(campaign),
             PlanError::DuplicateId { field, .. } => (*field).to_string(),
             PlanError::TooManyTasks { .. } => "activities".into(),

@@ -58,6 +58,12 @@ const MIN_GRID_RESOLUTION_M: f64 = 0.01;
 const MAX_GRID_RESOLUTION_M: f64 = 50.0;
 /// Image-matching localizer run-time multiplier on the co-processor.
 const MAX_HBS_SLOWDOWN: f64 = 1_000.0;
+/// HBS serial link rate, KB/s: 10 flown, 40 possible (paper 000 §6). Below 1 KB/s the
+/// flight-size inputs would take over five hours, beyond a sol's activities; above 1000 it is
+/// not this serial link.
+const HBS_LINK_RATE_KB_PER_S: [f64; 2] = [1.0, 1_000.0];
+/// The default HBS link rate, KB/s: the flown 10 KB/s (paper 000 §6).
+pub const DEFAULT_HBS_LINK_RATE_KB_PER_S: f64 = 10.0;
 /// Terrain cost multiplier.
 const MAX_TERRAIN_COST: f64 = 1_000.0;
 /// One sol's historic drive, m: the longest Mars drives are well under 1 km per sol.
@@ -101,6 +107,9 @@ pub struct ScenarioSpec {
     pub model: UncertaintyModel,
     /// Which onboard localizer.
     pub localizer: LocalizerSpec,
+    /// The HBS serial link rate, bytes per second (`hbs_link_rate_kb_per_s` × 1000): it times
+    /// the transfer of the onboard localization's inputs, for every localizer.
+    pub hbs_link_bytes_per_s: f64,
     /// Operator margin after an onboard localization, metres.
     pub operator_margin_m: f64,
     /// Post-drive imaging before a downlink pass, seconds.
@@ -462,6 +471,17 @@ impl ScenarioSpec {
                         "seconds per second",
                     )
                 })?;
+        let hbs_link_bytes_per_s = 1_000.0
+            * l.hbs_link_rate_kb_per_s
+                .map_or(Ok(DEFAULT_HBS_LINK_RATE_KB_PER_S), |v| {
+                    c.in_range(
+                        "onboard_localization.hbs_link_rate_kb_per_s",
+                        v,
+                        HBS_LINK_RATE_KB_PER_S[0],
+                        HBS_LINK_RATE_KB_PER_S[1],
+                        "KB/s (1 KB = 1000 bytes; 10 flown, 40 after an RCE flight-software update)",
+                    )
+                })?;
         let ld = StatisticalLocalizer::default();
         let statistical = StatisticalLocalizer {
             mean_error_m: l.mean_error_m.map_or(Ok(ld.mean_error_m), |v| {
@@ -492,6 +512,8 @@ impl ScenarioSpec {
                     "metres",
                 )
             })?,
+            // The link rate is set with every localizer's, in `Scenario::build`.
+            hbs: ld.hbs,
         };
         if statistical.p99_error_m <= statistical.mean_error_m * 1.05 {
             return Err(ScenarioError::field(
@@ -863,6 +885,7 @@ impl ScenarioSpec {
             calendar,
             rover,
             model,
+            hbs_link_bytes_per_s,
             localizer: match method {
                 None => LocalizerSpec::Statistical(statistical),
                 Some(method) => LocalizerSpec::Imagery {
@@ -1044,7 +1067,7 @@ impl Scenario {
             ));
         }
         let layers = Arc::new(layers);
-        let localizer = match spec.localizer {
+        let mut localizer = match spec.localizer {
             LocalizerSpec::Statistical(statistical) => OnboardLocalizer::Statistical(statistical),
             LocalizerSpec::Imagery {
                 method,
@@ -1055,6 +1078,7 @@ impl Scenario {
                 OnboardLocalizer::Imagery(Box::new(imagery))
             }
         };
+        localizer.set_link_bytes_per_s(spec.hbs_link_bytes_per_s);
         let campaign = Campaign {
             name: spec.name.clone(),
             seed: spec.seed,

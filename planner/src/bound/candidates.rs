@@ -48,7 +48,7 @@ pub(super) fn candidates(
         if cur.done.contains(id) {
             continue;
         }
-        let s = cur.time_s.max(t.earliest_start_s);
+        let s = cur.ready_s(t.timeline).max(t.earliest_start_s);
         let reachable = t
             .driven_window_m
             .is_none_or(|[_, hi]| cur.driven_m <= hi + DISTANCE_EPS_M);

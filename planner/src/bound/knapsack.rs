@@ -67,6 +67,16 @@ struct Orders {
     coupled: Vec<Vec<Order>>,
 }
 
+/// The main-timeline time a task takes, s: its duration, or 0 for a task on the HBS link
+/// alone, which overlaps main-timeline tasks (the time knapsacks are over the main timeline).
+pub(super) fn main_time_s(t: &crate::instance::Task) -> i64 {
+    if t.timeline.uses_main() {
+        t.duration_s
+    } else {
+        0
+    }
+}
+
 fn rows_of(keys_per_task: &[i64]) -> (Vec<usize>, Vec<i64>) {
     let mut keys = keys_per_task.to_vec();
     keys.sort_unstable();
@@ -101,7 +111,7 @@ impl Layout {
         }
         let weight = |t: usize, r: usize| {
             let x = &tasks[t];
-            [x.duration_s as f64, x.energy_wh(), x.data_mb][r]
+            [main_time_s(x) as f64, x.energy_wh(), x.data_mb][r]
         };
         let order = |util: &dyn Fn(usize) -> f64| -> Order {
             std::array::from_fn(|r| {
@@ -161,7 +171,7 @@ impl Layout {
             .flat_map(|t| tasks[t].preconditions.iter().map(move |q| (t as u32, q.0)))
             .collect();
         pairs.sort_by_key(|&(t, q)| (std::cmp::Reverse(depth[t as usize]), t, q));
-        let g = tasks.iter().fold(0, |g, x| gcd(g, x.duration_s));
+        let g = tasks.iter().fold(0, |g, x| gcd(g, main_time_s(x)));
         let span = p.end_s - p.start_s;
         let dur_grain = if g > 0 && span / g <= MAX_DP_UNITS {
             g
@@ -241,7 +251,7 @@ pub(super) fn knapsack_bound(
             active.push((ji, jq));
         }
     }
-    let dur = |t: TaskId| tasks[t.index()].duration_s as f64;
+    let dur = |t: TaskId| main_time_s(&tasks[t.index()]) as f64;
     let energy = |t: TaskId| tasks[t.index()].energy_wh();
     let data = |t: TaskId| tasks[t.index()].data_mb;
     let data_cap = p.data_capacity_mb - cur.data_mb + downlink;
@@ -261,7 +271,7 @@ pub(super) fn knapsack_bound(
             &layout.dl_row,
             &layout.dl_keys,
             energy,
-            |d| cur.energy_wh + p.recharge_w * (d - now) as f64 / 3600.0,
+            |d| cur.energy_wh + p.recharge_w * (d - cur.energy_t_s) as f64 / 3600.0,
         ),
         _ => chain(cand, mandatory, &layout.zero_row, &[0], data, |_| data_cap),
     };

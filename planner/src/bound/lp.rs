@@ -5,6 +5,7 @@
 //! Paper 003 §3.1 (optimistic plan quality for branch and bound).
 
 use super::candidates::Candidates;
+use super::knapsack::main_time_s;
 use crate::instance::{Instance, TaskId};
 use crate::state::Cursor;
 use crate::value::MICRO_PER_POINT;
@@ -66,18 +67,22 @@ pub(super) fn lp_rows(inst: &Instance, cur: &Cursor, cand: &Candidates) -> Optio
     let mut deadlines: Vec<i64> = (0..ids.len()).map(deadline).collect();
     deadlines.sort_unstable();
     deadlines.dedup();
+    let hours = |t: TaskId| main_time_s(inst.task(t)) as f64 / 3600.0;
     for &dl in &deadlines {
-        let h = (dl - t0) as f64 / 3600.0;
+        // Only main-timeline time counts; a deadline before the main timeline is free holds
+        // only link tasks (no main-timeline time).
+        let h = ((dl - t0) as f64 / 3600.0).max(0.0);
         let mut it = (0..ids.len())
             .filter(|&j| deadline(j) <= dl)
-            .map(|j| (j, inst.task(ids[j]).duration_s as f64 / 3600.0));
+            .map(|j| (j, hours(ids[j])));
         if !add_row(&mut it, h) {
             return None;
         }
         let mut it = (0..ids.len())
             .filter(|&j| deadline(j) <= dl)
             .map(|j| (j, inst.task(ids[j]).energy_wh()));
-        if !add_row(&mut it, cur.energy_wh + p.recharge_w * h) {
+        let recharge_h = (dl - cur.energy_t_s) as f64 / 3600.0;
+        if !add_row(&mut it, cur.energy_wh + p.recharge_w * recharge_h) {
             return None;
         }
     }
@@ -87,7 +92,7 @@ pub(super) fn lp_rows(inst: &Instance, cur: &Cursor, cand: &Candidates) -> Optio
     for &r in &releases {
         let mut it = (0..ids.len())
             .filter(|&j| release(j) >= r)
-            .map(|j| (j, inst.task(ids[j]).duration_s as f64 / 3600.0));
+            .map(|j| (j, hours(ids[j])));
         if !add_row(&mut it, (p.end_s - r) as f64 / 3600.0) {
             return None;
         }

@@ -45,6 +45,7 @@ impl Sim {
             data_mb: self.data_mb,
             driven_m: self.driven_m,
             done: self.order.clone(),
+            running: Vec::new(),
         }
     }
 

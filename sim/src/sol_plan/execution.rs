@@ -2,8 +2,8 @@
 //! goals replan from the current state, every plan is validated.
 
 use planner::{
-    Activity, Campaign, Instance, Plan, PlanStatus, RepairOutcome, SearchSettings, State, TaskId,
-    plan_from, repair, validate_plan,
+    Activity, Campaign, Instance, Plan, PlanStatus, PlanStep, RepairOutcome, SearchSettings, State,
+    TaskId, plan_from, repair, step_resources, validate_plan,
 };
 
 use super::record::SolPlanStatus;
@@ -53,6 +53,10 @@ pub struct SolExecution {
     /// The state before `remaining`.
     state: State,
     remaining: Plan,
+    /// The state the sol's plan started from.
+    initial: State,
+    /// The executed steps as run (actual ends), one per row.
+    executed: Vec<PlanStep>,
     rows: Vec<TimelineStep>,
     changes: Vec<String>,
     violations: Vec<String>,
@@ -91,6 +95,8 @@ impl SolExecution {
             inst,
             settings,
             status: outcome.status.into(),
+            initial: state.clone(),
+            executed: Vec::new(),
             state,
             remaining: outcome.plan,
             rows: Vec::new(),
@@ -208,12 +214,18 @@ impl SolExecution {
                 (state, None)
             }
         };
+        self.executed.push(PlanStep {
+            task: first.task,
+            start_s: first.start_s,
+            end_s,
+        });
         self.rows.push(TimelineStep {
             activity: name,
             start_lmst: start.lmst(),
             end_lmst: end.lmst(),
             start_s: start,
             end_s: end,
+            timeline: self.inst.task(first.task).timeline,
             energy_wh_after: state.energy_wh,
             data_mb_after: state.data_mb,
             outcome,
@@ -259,6 +271,15 @@ impl SolExecution {
         // Appending keeps every existing task id, so the current state stays valid.
         match Instance::new(&problem) {
             Ok(inst) => {
+                // On two timelines the state may lag behind the step about to run (a task of
+                // the other timeline could still have started earlier): the goal is known at
+                // that step's start, so nothing is planned before it.
+                if inst.uses_link()
+                    && let Some(next) = self.remaining.steps.first()
+                    && let Ok(now) = self.state.advanced_to(&inst, next.start_s)
+                {
+                    self.state = now;
+                }
                 self.inst = inst;
                 self.changes.push(format!(
                     "{}: {reason}: {id} added: replanned",
@@ -324,7 +345,19 @@ impl SolExecution {
 
     /// The sol log's plan: the executed timeline, the repairs and replans, and any violation.
     #[must_use]
-    pub fn finish(self) -> SolPlan {
+    pub fn finish(mut self) -> SolPlan {
+        if self.inst.uses_link() {
+            // A row's state is taken when the next activity may start, which on two
+            // timelines can be before the row ends: re-simulate the executed timeline for
+            // the battery when each row ended, overlaps included.
+            let executed = Plan {
+                steps: std::mem::take(&mut self.executed),
+            };
+            let energy = step_resources(&self.inst, &self.initial, &executed);
+            for (row, r) in self.rows.iter_mut().zip(energy) {
+                row.energy_wh_after = r.energy_wh_after;
+            }
+        }
         let mut violations = self.violations;
         if !self.remaining.steps.is_empty() {
             violations.push(format!(
@@ -516,6 +549,50 @@ mod tests {
         assert!(plan.violations.is_empty(), "{:?}", plan.violations);
         assert!(names(&plan).contains(&"mastcam-new"), "{:?}", names(&plan));
         assert!(plan.changes.iter().any(|c| c.contains("mastcam-new added")));
+    }
+
+    /// The flight-size transfer (30 min at 10 KB/s) holds the HBS link: the pass fixed inside
+    /// it runs on the main timeline meanwhile, the runs wait for it, and the battery after
+    /// each row counts both.
+    #[test]
+    fn the_transfer_runs_on_the_hbs_link_across_the_pass() {
+        let p = SolPlanParams::default();
+        let mut r = req(true);
+        r.chain = Some(ChainDurations {
+            transfer_s: 1_800,
+            run_s: 32,
+            reboot_s: 120,
+        });
+        r.downlink = Some(at("14:50"));
+        let plan = run(SolExecution::new(&p, &r).expect("plans"), |_| None);
+        assert!(plan.violations.is_empty(), "{:?}", plan.violations);
+        let row = |id: &str| {
+            plan.timeline
+                .iter()
+                .find(|s| s.activity == id)
+                .unwrap_or_else(|| panic!("{id}: {:?}", names(&plan)))
+        };
+        let (transfer, pass) = (row("hbs_transfer"), row("comm_pass"));
+        assert_eq!(transfer.timeline, planner::Timeline::HbsLink);
+        assert_eq!(pass.timeline, planner::Timeline::Main);
+        assert_eq!(transfer.end_s - transfer.start_s, 1_800);
+        assert!(pass.start_s < transfer.end_s && transfer.start_s < pass.end_s);
+        assert_eq!(row("hbs_run_1").start_s, transfer.end_s);
+        assert!(row("compare_apply").start_s >= row("hbs_run_2").end_s);
+        // Rows in start order; the pass row's battery counts the transfer's draw too.
+        assert!(
+            plan.timeline
+                .windows(2)
+                .all(|w| w[0].start_s <= w[1].start_s)
+        );
+        let (e0, e1) = (row("sunfind").energy_wh_after, pass.energy_wh_after);
+        let recharge_wh = p.recharge_w * (pass.end_s - row("sunfind").end_s) as f64 / 3600.0;
+        let drawn_wh =
+            (10.0 * 600.0 + p.hbs_power_w * (pass.end_s - transfer.start_s) as f64) / 3600.0;
+        assert!(
+            (e1 - (e0 + recharge_wh - drawn_wh)).abs() < 1e-6,
+            "{e0} {e1}"
+        );
     }
 
     #[test]

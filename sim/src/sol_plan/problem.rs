@@ -2,7 +2,7 @@
 //! the post-drive imaging, the afternoon pass, the onboard localization chain and the science
 //! candidates, as a [`planner::Problem`].
 
-use planner::{Activity, ActivityKind, Drive, Problem};
+use planner::{Activity, ActivityKind, Drive, Problem, Timeline};
 
 use super::SolPlanParams;
 use crate::science::SolScience;
@@ -35,7 +35,8 @@ pub const SOL_ACTIVITIES: [&str; 10] = [
 /// The localization chain's planned durations, s (from the co-processor model's settings).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ChainDurations {
-    /// Writing the input file and sending it over the link.
+    /// Writing the input file and sending it over the link: the flight-size inputs at the
+    /// link rate, ~30 min at the flown 10 KB/s (paper 000 §4).
     pub transfer_s: i64,
     /// One run on the co-processor.
     pub run_s: i64,
@@ -148,17 +149,24 @@ pub fn sol_problem(p: &SolPlanParams, req: &SolPlanRequest) -> Problem {
     }
     if let Some(c) = req.chain {
         let w = [drive_start, late];
+        // The transfer, the runs and the reboot hold the HBS link, not the main timeline:
+        // "although the transfer takes 30 minutes, the entire activity can be safely run in
+        // parallel with other operations" (paper 000 §4). SunFind and the comparison run on
+        // the rover computer.
+        let (main, link) = (Timeline::Main, Timeline::HbsLink);
         let steps = [
-            (p.sunfind_s, 20.0),
-            (c.transfer_s, p.hbs_power_w),
-            (c.run_s, p.hbs_power_w),
-            (c.reboot_s, p.hbs_power_w),
-            (c.run_s, p.hbs_power_w),
-            (p.compare_apply_s, 5.0),
+            (p.sunfind_s, 20.0, main),
+            (c.transfer_s, p.hbs_power_w, link),
+            (c.run_s, p.hbs_power_w, link),
+            (c.reboot_s, p.hbs_power_w, link),
+            (c.run_s, p.hbs_power_w, link),
+            (p.compare_apply_s, 5.0, main),
         ];
         let mut after = "post_drive_imaging";
-        for (id, (duration_s, power_w)) in LOCALIZATION_CHAIN.into_iter().zip(steps) {
-            activities.push(chained(id, duration_s, power_w, after, w));
+        for (id, (duration_s, power_w, timeline)) in LOCALIZATION_CHAIN.into_iter().zip(steps) {
+            let mut a = chained(id, duration_s, power_w, after, w);
+            a.timeline = timeline;
+            activities.push(a);
             after = id;
         }
     }

@@ -1,7 +1,7 @@
 //! What the sol log keeps of a sol's plan: the executed timeline, the repairs and replans, and
 //! any violation the validator found.
 
-use planner::PlanStatus;
+use planner::{PlanStatus, Timeline};
 
 use crate::time::SolSeconds;
 
@@ -18,7 +18,11 @@ pub struct TimelineStep {
     pub start_s: SolSeconds,
     /// End, seconds after local midnight.
     pub end_s: SolSeconds,
-    /// Battery energy after it, Wh.
+    /// The planner timeline it held: `hbs_link` for the co-processor chain's transfer, runs and
+    /// reboot, which overlap main-timeline rows (left out of the JSON for `main`).
+    #[serde(skip_serializing_if = "Timeline::is_main")]
+    pub timeline: Timeline,
+    /// Battery energy when it ended, Wh (counting every activity that overlapped it).
     pub energy_wh_after: f64,
     /// Stored data after it, MB.
     pub data_mb_after: f64,
@@ -90,7 +94,8 @@ pub struct SolPlan {
     /// Search result: `optimal`, `feasible` (budget hit), `infeasible`, `no plan found`, or
     /// `not planned` (the planner refused the problem).
     pub status: SolPlanStatus,
-    /// The timeline as executed: actual start and end of every activity.
+    /// The timeline as executed: actual start and end of every activity, in start order
+    /// (rows on the HBS link overlap main-timeline rows).
     pub timeline: Vec<TimelineStep>,
     /// Every repair and replan, in order (`HH:MM: drive#1/1 ended at … : 3 later activities
     /// shifted`, `HH:MM: NO_PATH after 14.0 m (cancelled …): replanned`); empty if the sol

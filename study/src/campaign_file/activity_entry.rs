@@ -1,6 +1,6 @@
 //! `[[activities]]` entries (tasks and drives) → [`planner::Activity`].
 
-use planner::{Activity, ActivityKind, Drive};
+use planner::{Activity, ActivityKind, Drive, Timeline};
 
 use super::raw::{RawActivity, RawDrive};
 use crate::check::{Check, lmst_of};
@@ -181,6 +181,18 @@ pub(crate) fn activity(
         a.downlink_mb.unwrap_or(0.0),
         "megabytes",
     )?;
+    let timeline = match a.timeline.as_deref() {
+        None | Some("main") => Timeline::Main,
+        Some("hbs_link") => Timeline::HbsLink,
+        Some("main_and_hbs_link") => Timeline::MainAndHbsLink,
+        Some(other) => {
+            return Err(c.err(
+                &format!("{f}.timeline"),
+                "\"main\", \"hbs_link\" or \"main_and_hbs_link\"",
+                format!("{other:?}"),
+            ));
+        }
+    };
     for (k, p) in a.preconditions.iter().enumerate() {
         if !all_ids.contains(&p.as_str()) || *p == a.id {
             return Err(c.err(
@@ -205,5 +217,6 @@ pub(crate) fn activity(
         tier: c.tier(&format!("{f}.tier"), a.tier)?,
         utility: c.utility(&format!("{f}.utility"), a.utility.unwrap_or(0.0))?,
         driven_window_m: None,
+        timeline,
     })
 }

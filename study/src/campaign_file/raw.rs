@@ -50,6 +50,7 @@ pub(crate) struct RawActivity {
     pub(crate) campaign: Option<String>,
     pub(crate) tier: Option<i64>,
     pub(crate) utility: Option<f64>,
+    pub(crate) timeline: Option<String>,
 }
 
 #[derive(Debug, Deserialize)]

@@ -109,6 +109,7 @@ pub(crate) struct RawUncertainty {
 pub(crate) struct RawLocalizer {
     pub(crate) localizer: Option<String>,
     pub(crate) hbs_slowdown: Option<f64>,
+    pub(crate) hbs_link_rate_kb_per_s: Option<f64>,
     pub(crate) mean_error_m: Option<f64>,
     pub(crate) p99_error_m: Option<f64>,
     pub(crate) failure_rate: Option<f64>,
