@@ -3,12 +3,9 @@
 
 mod common;
 
-use common::{assert_bad_input, root, scenario_copy, solsim};
+use common::{assert_bad_input, root, solsim};
 
-fn validate(edit: impl Fn(String) -> String) -> std::process::Output {
-    let (path, _d) = scenario_copy("sol717-719.toml", edit);
-    solsim().arg("validate").arg(&path).output().expect("runs")
-}
+use common::validate_edited_sol717 as validate;
 
 fn with_errors(section: &str) -> impl Fn(String) -> String + '_ {
     move |t: String| t.replacen("[map]", &format!("[errors]\n{section}\n\n[map]"), 1)

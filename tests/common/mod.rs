@@ -55,6 +55,12 @@ pub fn scenario_copy(base: &str, edit: impl Fn(String) -> String) -> (PathBuf, t
     (path, dir)
 }
 
+/// `solsim validate` on a copy of `scenarios/sol717-719.toml` edited by `edit`.
+pub fn validate_edited_sol717(edit: impl Fn(String) -> String) -> Output {
+    let (path, _d) = scenario_copy("sol717-719.toml", edit);
+    solsim().arg("validate").arg(&path).output().expect("runs")
+}
+
 /// Runs `cmd` with no standard input and returns its output, killing it and failing the test
 /// if it has not finished within `limit` (a hang is a bug, not a slow test).
 pub fn output_within(cmd: &mut Command, limit: Duration) -> Output {
