@@ -473,7 +473,14 @@ fn compare(
         write!(stdout, "{}", report::compare_table(&outcomes))?;
         write!(stdout, "{}", report::against_ground(&scenario, &outcomes))?;
         if let Some(summary) = &summary {
-            write!(stdout, "{}", report_runs::against_ground_over_runs(summary))?;
+            let left = scenario
+                .study_segment
+                .map(|g| scenario.campaign.calendar.sols_from(g.from_sol));
+            write!(
+                stdout,
+                "{}",
+                report_runs::against_ground_over_runs(summary, left)
+            )?;
         }
     }
     let extra: Vec<(String, String)> = summary

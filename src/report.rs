@@ -426,12 +426,30 @@ pub fn against_ground(scenario: &Scenario, outcomes: &[CampaignOutcome]) -> Stri
         u.len()
     };
     let hours = |o: &CampaignOutcome| o.sols.iter().map(|r| r.drive_time_s).sum::<f64>() / 3600.0;
+    // A run that did not cover the segment needs more than the sols left in the calendar, so
+    // "k fewer than ground" is still a bound when ground did not cover it.
     let segment = |o: &CampaignOutcome| {
         scenario.study_segment.map(|g| {
-            o.sols_to_cover(g.from_sol, g.distance_m)
-                .map_or("not covered within the calendar".to_string(), |n| {
-                    format!("covered in {n} sols")
-                })
+            let left = cal.sols_from(g.from_sol);
+            let mine = o.sols_to_cover(g.from_sol, g.distance_m);
+            let against = if o.strategy == sim::Strategy::Ground {
+                String::new()
+            } else {
+                match (mine, base.sols_to_cover(g.from_sol, g.distance_m)) {
+                    (Some(m), Some(b)) => {
+                        format!(" against {b} ({:+})", i64::from(m) - i64::from(b))
+                    }
+                    (Some(m), None) => format!(
+                        " against more than {left}: at least {} fewer",
+                        i64::from(left) + 1 - i64::from(m)
+                    ),
+                    _ => String::new(),
+                }
+            };
+            mine.map_or(
+                format!("not covered within the calendar (more than {left} sols)"),
+                |n| format!("covered in {n} sols{against}"),
+            )
         })
     };
     let mut s = String::new();

@@ -100,8 +100,11 @@ impl Shown {
 /// drive time, peak uncertainty and uplinks that needed a drive plan, each as the strategy's
 /// mean against ground's and the mean paired difference with its 95 % bootstrap interval; the
 /// NO_PATH and any-fault rates of the strategy and of ground with 95 % Wilson intervals.
+///
+/// `segment_sols_left`: the sols from the segment's first sol to the calendar's end; a run that
+/// did not cover the segment needs more than that many, which is said where `ground` never did.
 #[must_use]
-pub fn against_ground_over_runs(summary: &Summary) -> String {
+pub fn against_ground_over_runs(summary: &Summary, segment_sols_left: Option<u32>) -> String {
     let st = &summary.statistics;
     let Some(base) = st.baseline.as_deref() else {
         return String::new();
@@ -140,10 +143,13 @@ pub fn against_ground_over_runs(summary: &Summary) -> String {
             g.distance_m,
             g.from_sol,
             covered(base),
-            mean(base, Figure::SegmentSols).map_or(String::new(), |sp| format!(
-                ", in {} on average",
-                sols.value(sp.mean)
-            ))
+            mean(base, Figure::SegmentSols).map_or_else(
+                || segment_sols_left.map_or(String::new(), |left| format!(
+                    " (a run that did not cover it needs more than the {left} sols to the \
+                     calendar's end)"
+                )),
+                |sp| format!(", in {} on average", sols.value(sp.mean))
+            )
         );
     }
     let lines = [
@@ -166,14 +172,19 @@ pub fn against_ground_over_runs(summary: &Summary) -> String {
                     ))
                 )
             });
-            let diff =
-                paired(name, sols.figure).map_or("no run where both covered it".into(), |d| {
-                    format!(
-                        "difference {} over the {} runs where both covered it",
-                        sols.difference(d),
-                        d.n
-                    )
-                });
+            let none_for_base = match segment_sols_left {
+                Some(left) if covered(base) == 0 => {
+                    format!("{base}: more than {left} in every run")
+                }
+                _ => "no run where both covered it".into(),
+            };
+            let diff = paired(name, sols.figure).map_or(none_for_base, |d| {
+                format!(
+                    "difference {} over the {} runs where both covered it",
+                    sols.difference(d),
+                    d.n
+                )
+            });
             let _ = writeln!(
                 s,
                 "    study segment: covered in {} of {runs} runs ({base} {}){average}; {diff}",

@@ -68,3 +68,45 @@ fn a_paired_entry_needs_a_mean_or_a_share() {
     });
     assert_bad_input(&o, &["expect[3].paired", "mean = [low, high]"]);
 }
+
+#[test]
+fn preemptive_shortening_in_an_expectation_needs_runs_and_a_check() {
+    let o = validate(|t| {
+        t + "\n[[expect]]\nstrategy = \"ground\"\npreemptive_shortening = false\ntotal_distance_m = [0.0, 1.0]\n"
+    });
+    assert_bad_input(&o, &["expect[3].runs", "number of runs"]);
+    let o = validate(|t| {
+        t + "\n[[expect]]\nstrategy = \"ground\"\nruns = 10\npreemptive_shortening = false\n"
+    });
+    assert_bad_input(&o, &["expect[3]", "at least one statistical check"]);
+    let o = validate(|t| {
+        t + "\n[[expect]]\nstrategy = \"ground\"\nruns = 10\npreemptive_shortening = \"no\"\nno_path_rate = [0.0, 1.0]\n"
+    });
+    assert_bad_input(&o, &["preemptive_shortening"]);
+}
+
+#[test]
+fn an_expectation_without_preemptive_shortening_runs_the_sweep_without_it() {
+    // sol383-386's ground meets NO_PATH in a minority of runs with shortening (paper 000 §2)
+    // and in every run without it: the override reaches the planners.
+    let dir = tempfile::tempdir().expect("tempdir");
+    let src = common::root().join("scenarios");
+    let text = std::fs::read_to_string(src.join("sol383-386.toml")).expect("scenario");
+    let head = &text[..text.find("\n[[expect]]").expect("an expect")];
+    let edited = head
+        .replace(
+            "\"../maps/",
+            &format!("\"{}/maps/", common::root().display()),
+        )
+        .replace("zones = \"", &format!("zones = \"{}/", src.display()))
+        + "\n[[expect]]\nwhat = \"without shortening ground faults in every run\"\nstrategy = \"ground\"\nruns = 20\npreemptive_shortening = false\nno_path_rate = [1.0, 1.0]\n\n[[expect]]\nwhat = \"with it, not in every run\"\nstrategy = \"ground\"\nruns = 20\nno_path_rate = [0.0, 0.9]\n";
+    std::fs::write(dir.path().join("s.toml"), edited).expect("writes");
+    let o = common::solsim()
+        .arg("regress")
+        .arg(dir.path())
+        .output()
+        .expect("runs");
+    assert_eq!(o.status.code(), Some(0), "{}", common::stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(out.contains("2 passed, 0 failed"), "{out}");
+}

@@ -66,6 +66,15 @@ pub struct Calendar {
 }
 
 impl Calendar {
+    /// Sols from `from_sol` (inclusive) to the end of the calendar. A run that did not cover a
+    /// stretch counted from `from_sol` needs more than this many sols (a censored count).
+    #[must_use]
+    pub fn sols_from(&self, from_sol: u32) -> u32 {
+        self.sols
+            .last()
+            .map_or(0, |last| (last.sol + 1).saturating_sub(from_sol))
+    }
+
     /// Index of the next uplink strictly after index `i` (`None`: beyond the calendar).
     #[must_use]
     pub fn next_uplink_after(&self, i: usize) -> Option<usize> {

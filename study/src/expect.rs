@@ -34,6 +34,12 @@
 //! runs = 200
 //! errors = "stress"                # under another error model than the scenario's
 //! disc_coverage = [0.0, 0.99]
+//!
+//! [[expect]]                       # what-if: ground without paper 000 §2's pre-emptive
+//! strategy = "ground"              # shortening (the scenario's [operations] otherwise)
+//! runs = 200
+//! preemptive_shortening = false
+//! no_path_rate = [0.05, 1.0]
 //! ```
 //!
 //! A statistical entry checks the point estimate (a rate, or the mean paired difference over
@@ -80,6 +86,7 @@ pub struct RawExpectation {
     goal_reached_rate: Option<[f64; 2]>,
     disc_coverage: Option<[f64; 2]>,
     errors: Option<String>,
+    preemptive_shortening: Option<bool>,
     paired: Option<RawPaired>,
 }
 
@@ -156,6 +163,9 @@ pub struct StatisticalExpectation {
     pub runs: u64,
     /// The error model the sweep runs under, when not the scenario's own (`errors = "stress"`).
     pub errors: Option<sim::errors::ErrorPreset>,
+    /// `[operations] preemptive_shortening` for the sweep, when not the scenario's
+    /// (`preemptive_shortening = false`).
+    pub preemptive_shortening: Option<bool>,
     /// The checks.
     pub checks: Vec<StatCheck>,
 }
@@ -296,7 +306,9 @@ impl RawExpectation {
         ];
         let statistical = rates.iter().any(|(_, r)| r.is_some())
             || self.disc_coverage.is_some()
-            || self.paired.is_some();
+            || self.paired.is_some()
+            || self.errors.is_some()
+            || self.preemptive_shortening.is_some();
         match (self.runs, statistical) {
             (None, false) => {}
             (None, true) => {
@@ -478,6 +490,7 @@ impl RawExpectation {
                     strategy,
                     runs,
                     errors,
+                    preemptive_shortening: self.preemptive_shortening,
                     checks,
                 }));
             }
