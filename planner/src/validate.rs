@@ -8,8 +8,8 @@
 //! [`step_resources`] reports the same re-simulation step by step (battery and data after
 //! each step, metres driven when it starts).
 
-use crate::instance::{Instance, TaskId};
-use crate::plan::Plan;
+use crate::instance::{Instance, Task, TaskId};
+use crate::plan::{Plan, PlanStep};
 use crate::state::{DATA_EPS_MB, DISTANCE_EPS_M, ENERGY_EPS_WH, State};
 use serde::{Deserialize, Serialize};
 
@@ -122,27 +122,9 @@ pub fn validate_plan(instance: &Instance, state: &State, plan: &Plan) -> Vec<Vio
     let mut driven = state.driven_m;
     let cap = p.battery_capacity_wh;
     for (i, s) in plan.steps.iter().enumerate() {
-        if s.task.index() >= n {
-            out.push(Violation::UnknownTask { step: i });
+        let Some(task) = check_step_task(instance, s, i, |t| done[t.index()], &mut out) else {
             continue;
-        }
-        let task = instance.task(s.task);
-        if done[s.task.index()] {
-            out.push(Violation::Repeated { step: i });
-        }
-        if s.end_s - s.start_s != task.duration_s {
-            out.push(Violation::WrongDuration {
-                step: i,
-                expected_s: task.duration_s,
-                found_s: s.end_s - s.start_s,
-            });
-        }
-        if s.start_s < task.earliest_start_s || s.start_s > task.latest_start_s {
-            out.push(Violation::OutsideWindow {
-                step: i,
-                start_s: s.start_s,
-            });
-        }
+        };
         if s.start_s < now {
             out.push(Violation::Overlap { step: i });
         }
@@ -326,6 +308,40 @@ fn energy_at_ends(instance: &Instance, state: &State, plan: &Plan) -> Vec<f64> {
 }
 
 /// [`validate_plan`] on two timelines.
+/// The checks of one step that need only its task: the task exists (`None` if not, after
+/// pushing `UnknownTask`), is not done already (`already_done`), lasts its duration and starts
+/// within its window.
+fn check_step_task<'a>(
+    instance: &'a Instance,
+    s: &PlanStep,
+    i: usize,
+    already_done: impl Fn(TaskId) -> bool,
+    out: &mut Vec<Violation>,
+) -> Option<&'a Task> {
+    if s.task.index() >= instance.tasks().len() {
+        out.push(Violation::UnknownTask { step: i });
+        return None;
+    }
+    let task = instance.task(s.task);
+    if already_done(s.task) {
+        out.push(Violation::Repeated { step: i });
+    }
+    if s.end_s - s.start_s != task.duration_s {
+        out.push(Violation::WrongDuration {
+            step: i,
+            expected_s: task.duration_s,
+            found_s: s.end_s - s.start_s,
+        });
+    }
+    if s.start_s < task.earliest_start_s || s.start_s > task.latest_start_s {
+        out.push(Violation::OutsideWindow {
+            step: i,
+            start_s: s.start_s,
+        });
+    }
+    Some(task)
+}
+
 fn validate_timelines(instance: &Instance, state: &State, plan: &Plan) -> Vec<Violation> {
     let p = instance.problem();
     let n = instance.tasks().len();
@@ -359,27 +375,11 @@ fn validate_timelines(instance: &Instance, state: &State, plan: &Plan) -> Vec<Vi
     let mut driven = state.driven_m;
     for &i in &order {
         let s = plan.steps[i];
-        if s.task.index() >= n {
-            out.push(Violation::UnknownTask { step: i });
+        let Some(task) =
+            check_step_task(instance, &s, i, |t| end_of[t.index()].is_some(), &mut out)
+        else {
             continue;
-        }
-        let task = instance.task(s.task);
-        if end_of[s.task.index()].is_some() {
-            out.push(Violation::Repeated { step: i });
-        }
-        if s.end_s - s.start_s != task.duration_s {
-            out.push(Violation::WrongDuration {
-                step: i,
-                expected_s: task.duration_s,
-                found_s: s.end_s - s.start_s,
-            });
-        }
-        if s.start_s < task.earliest_start_s || s.start_s > task.latest_start_s {
-            out.push(Violation::OutsideWindow {
-                step: i,
-                start_s: s.start_s,
-            });
-        }
+        };
         let tl = task.timeline;
         if s.start_s < state.time_s || (tl.uses_main() && s.start_s < main_free) {
             out.push(Violation::Overlap { step: i });

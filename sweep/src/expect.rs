@@ -100,7 +100,7 @@ pub fn check(
         measured: Vec::new(),
     };
     for c in &e.checks {
-        match *c {
+        let (holds, check, expected, text) = match *c {
             StatCheck::Rate { rate, lo, hi } => {
                 let count = mine.iter().filter(|r| counts_for(rate, r)).count() as u64;
                 let got = count as f64 / n.max(1) as f64;
@@ -110,19 +110,12 @@ pub fn check(
                     rate.name(),
                     ci.map_or("-".into(), |i| format!("{:.3}, {:.3}", i.lo, i.hi))
                 );
-                if !(n > 0 && got >= lo - 1e-12 && got <= hi + 1e-12) {
-                    out.mismatches.push(Mismatch {
-                        check: format!(
-                            "{} {} over {} runs",
-                            e.strategy.name(),
-                            rate.name(),
-                            e.runs
-                        ),
-                        expected: format!("[{lo}, {hi}]"),
-                        got: text.clone(),
-                    });
-                }
-                out.measured.push(text);
+                (
+                    n > 0 && within(got, lo, hi),
+                    rate.name().to_string(),
+                    format!("[{lo}, {hi}]"),
+                    text,
+                )
             }
             StatCheck::DiscCoverage { lo, hi } => {
                 let cov = summary::disc_coverage(&mine);
@@ -135,14 +128,12 @@ pub fn check(
                         )
                     },
                 );
-                if !cov.is_some_and(|r| r.rate >= lo - 1e-12 && r.rate <= hi + 1e-12) {
-                    out.mismatches.push(Mismatch {
-                        check: format!("{} disc_coverage over {} runs", e.strategy.name(), e.runs),
-                        expected: format!("[{lo}, {hi}]"),
-                        got: text.clone(),
-                    });
-                }
-                out.measured.push(text);
+                (
+                    cov.is_some_and(|r| within(r.rate, lo, hi)),
+                    "disc_coverage".to_string(),
+                    format!("[{lo}, {hi}]"),
+                    text,
+                )
             }
             StatCheck::PairedShare {
                 baseline,
@@ -174,20 +165,12 @@ pub fn check(
                     baseline.name(),
                     ci.map_or("-".into(), |i| format!("{:.3}, {:.3}", i.lo, i.hi))
                 );
-                if !(n > 0 && got >= lo - 1e-12 && got <= hi + 1e-12) {
-                    out.mismatches.push(Mismatch {
-                        check: format!(
-                            "{} paired {} − {} ≤ {at_most} over {} runs",
-                            e.strategy.name(),
-                            name(figure),
-                            baseline.name(),
-                            e.runs
-                        ),
-                        expected: format!("share in [{lo}, {hi}]"),
-                        got: text.clone(),
-                    });
-                }
-                out.measured.push(text);
+                (
+                    n > 0 && within(got, lo, hi),
+                    format!("paired {} − {} ≤ {at_most}", name(figure), baseline.name()),
+                    format!("share in [{lo}, {hi}]"),
+                    text,
+                )
             }
             StatCheck::Paired {
                 baseline,
@@ -195,7 +178,10 @@ pub fn check(
                 lo,
                 hi,
             } => {
-                let diffs = paired_diffs(rows, &mine, baseline, figure);
+                let diffs: Vec<f64> = paired_upper_bounds(rows, &mine, baseline, figure, None)
+                    .into_iter()
+                    .flatten()
+                    .collect();
                 let d = stats::paired_bootstrap(
                     &diffs,
                     summary::BOOTSTRAP_RESAMPLES,
@@ -222,36 +208,24 @@ pub fn check(
                         )
                     },
                 );
-                if !d.is_some_and(|d| d.mean >= lo - 1e-12 && d.mean <= hi + 1e-12) {
-                    out.mismatches.push(Mismatch {
-                        check: format!(
-                            "{} paired {} − {} over {} runs",
-                            e.strategy.name(),
-                            name(figure),
-                            baseline.name(),
-                            e.runs
-                        ),
-                        expected: format!("mean in [{lo}, {hi}]"),
-                        got: text.clone(),
-                    });
-                }
-                out.measured.push(text);
+                (
+                    d.is_some_and(|d| within(d.mean, lo, hi)),
+                    format!("paired {} − {}", name(figure), baseline.name()),
+                    format!("mean in [{lo}, {hi}]"),
+                    text,
+                )
             }
+        };
+        if !holds {
+            out.mismatches.push(Mismatch {
+                check: format!("{} {check} over {} runs", e.strategy.name(), e.runs),
+                expected,
+                got: text.clone(),
+            });
         }
+        out.measured.push(text);
     }
     out
-}
-
-/// (strategy − baseline) on `figure` over the run indices where both have it.
-fn paired_diffs(rows: &[RunRow], mine: &[&RunRow], baseline: Strategy, figure: Figure) -> Vec<f64> {
-    let base: BTreeMap<u64, &RunRow> = rows
-        .iter()
-        .filter(|r| r.strategy == baseline)
-        .map(|r| (r.run_index, r))
-        .collect();
-    mine.iter()
-        .filter_map(|r| Some(figure_of(figure, r)? - figure_of(figure, base.get(&r.run_index)?)?))
-        .collect()
 }
 
 /// What a sol count is bounded by when a run has none: the calendar's sols.
@@ -309,6 +283,11 @@ fn paired_upper_bounds(
             Some(m.zip(least_b).map(|(m, b)| m - b))
         })
         .collect()
+}
+
+/// `x` within `[lo, hi]`, allowing for the rounding of a written range.
+fn within(x: f64, lo: f64, hi: f64) -> bool {
+    x >= lo - 1e-12 && x <= hi + 1e-12
 }
 
 fn name(f: Figure) -> &'static str {
