@@ -23,6 +23,7 @@ pub mod cmd_map;
 pub mod cmd_package;
 pub mod cmd_plan;
 pub mod cmd_sweep;
+pub mod cmd_validate;
 pub mod cmd_zones;
 pub mod output_set;
 pub mod regress;

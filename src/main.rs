@@ -71,9 +71,16 @@ enum Command {
     /// Run every scenario's [[expect]] entries in a directory; exit 1 and print a diff on any
     /// mismatch.
     Regress(RegressArgs),
-    /// Check a scenario (file, maps, zones, route) without running it; print the route's
-    /// passage clearance per leg.
-    Validate(ValidateArgs),
+    /// Check a scenario (file, maps, zones, route) without running it: list what makes no
+    /// sense as errors (exit 2; every other command refuses the scenario) or warnings (exit 0),
+    /// each with what to do, and print the route's passage clearance per leg.
+    ///
+    /// Errors: the route or the zones within one grid cell (coordinates in longitude/latitude
+    /// degrees, not map metres), a zone entirely off the map, a waypoint inside a keep-out, a
+    /// waypoint (the start included) outside the keep-in zones, a leg with no path even at
+    /// r = 0. Warnings: a waypoint where the rover's footprint overlaps a zone, a zone smaller
+    /// than one grid cell.
+    Validate(solsim::cmd_validate::ValidateArgs),
     /// Keep-in / keep-out zone queries.
     #[command(subcommand)]
     Zones(ZonesCommand),
@@ -198,12 +205,6 @@ struct RegressArgs {
     junit: Option<PathBuf>,
 }
 
-#[derive(Args)]
-struct ValidateArgs {
-    /// Scenario file (TOML).
-    scenario: PathBuf,
-}
-
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -300,77 +301,7 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
                 ExitCode::SUCCESS
             })
         }
-        Command::Validate(a) => {
-            let s = Scenario::load_within(&a.scenario, budget)?;
-            let c = &s.campaign;
-            let route_m: f64 = c
-                .route
-                .windows(2)
-                .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
-                .sum();
-            writeln!(
-                stdout,
-                "{}: ok — {} ({} sols {}..{}, {} waypoints, {:.1} m of route, {} expectations)",
-                a.scenario.display(),
-                s.name,
-                c.calendar.sols.len(),
-                c.calendar.sols[0].sol,
-                c.calendar.sols[c.calendar.sols.len() - 1].sol,
-                c.route.len(),
-                route_m,
-                s.expectations.len()
-            )?;
-            writeln!(
-                stdout,
-                "grid: {} × {} cells of {} m",
-                c.grid.width, c.grid.height, c.grid.geo.resolution_m_per_px
-            )?;
-            if !c.science.is_empty() {
-                let sci = &c.science;
-                let later = sci.targets.iter().filter(|t| t.revealed.is_some()).count();
-                let campaigns: Vec<String> = sci
-                    .goal_set
-                    .iter()
-                    .map(|g| format!("{} (goal set)", g.id))
-                    .chain(
-                        sci.periodic
-                            .iter()
-                            .map(|p| format!("{} (periodic)", p.campaign.id)),
-                    )
-                    .chain(
-                        sci.state_based
-                            .iter()
-                            .map(|s| format!("{} (state-based)", s.campaign.id)),
-                    )
-                    .collect();
-                writeln!(
-                    stdout,
-                    "science: {} targets ({later} revealed during the run); campaigns {}",
-                    sci.targets.len(),
-                    campaigns.join(", ")
-                )?;
-            }
-            writeln!(
-                stdout,
-                "passage clearance per route leg (the uncertainty radius at which the leg closes):"
-            )?;
-            for l in &s.legs {
-                let p = c.route[l.to_waypoint];
-                match l.clearance_m {
-                    Some(r) => writeln!(
-                        stdout,
-                        "  leg to waypoint {:>2} ({:.1}, {:.1}): closes at r = {r:.2} m",
-                        l.to_waypoint, p[0], p[1]
-                    )?,
-                    None => writeln!(
-                        stdout,
-                        "  leg to waypoint {:>2} ({:.1}, {:.1}): no path even at r = 0",
-                        l.to_waypoint, p[0], p[1]
-                    )?,
-                }
-            }
-            Ok(ExitCode::SUCCESS)
-        }
+        Command::Validate(a) => solsim::cmd_validate::run(&a, budget, stdout),
         Command::Zones(ZonesCommand::Check(a)) => {
             cmd_zones::run(&a, stdout)?;
             Ok(ExitCode::SUCCESS)

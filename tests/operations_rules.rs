@@ -93,12 +93,7 @@ fn an_expectation_without_preemptive_shortening_runs_the_sweep_without_it() {
     let src = common::root().join("scenarios");
     let text = std::fs::read_to_string(src.join("sol383-386.toml")).expect("scenario");
     let head = &text[..text.find("\n[[expect]]").expect("an expect")];
-    let edited = head
-        .replace(
-            "\"../maps/",
-            &format!("\"{}/maps/", common::root().display()),
-        )
-        .replace("zones = \"", &format!("zones = \"{}/", src.display()))
+    let edited = common::rebase(head)
         + "\n[[expect]]\nwhat = \"without shortening ground faults in every run\"\nstrategy = \"ground\"\nruns = 20\npreemptive_shortening = false\nno_path_rate = [1.0, 1.0]\n\n[[expect]]\nwhat = \"with it, not in every run\"\nstrategy = \"ground\"\nruns = 20\nno_path_rate = [0.0, 0.9]\n";
     std::fs::write(dir.path().join("s.toml"), edited).expect("writes");
     let o = common::solsim()

@@ -147,6 +147,13 @@ impl Zone {
     pub fn geometry(&self) -> &MultiPolygon<f64> {
         &self.geometry
     }
+
+    /// Whether `p` (map metres) lies in the zone, edges included (a point in a hole does not).
+    #[must_use]
+    pub fn covers(&self, p: [f64; 2]) -> bool {
+        use geo::Intersects;
+        self.geometry.intersects(&geo::Point::new(p[0], p[1]))
+    }
 }
 
 /// How far one point is from trouble (all in metres; see the [module docs](self)).

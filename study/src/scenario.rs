@@ -922,8 +922,36 @@ impl Scenario {
     ///
     /// # Errors
     /// A [`ScenarioError`] naming the file and the first field at fault.
+    ///
+    /// A scenario whose fields are each well formed but whose whole makes no sense (a route in
+    /// degrees, a waypoint in a keep-out, a leg closed at r = 0: [`crate::sanity`]) is refused
+    /// with its first [`crate::sanity::Severity::Error`]; [`Scenario::inspect_within`] lists
+    /// them all.
     pub fn load_within(path: &Path, budget: MemoryBudget) -> Result<Self, ScenarioError> {
-        Self::build(ScenarioSpec::load(path)?, budget)
+        let (scenario, findings) = Self::inspect_within(path, budget)?;
+        match findings
+            .iter()
+            .find(|f| f.severity == crate::sanity::Severity::Error)
+        {
+            Some(f) => Err(f.to_error(path)),
+            None => Ok(scenario),
+        }
+    }
+
+    /// Load like [`Scenario::load_within`], but return the scenario with every
+    /// [`crate::sanity`] finding, errors included, instead of refusing it: what
+    /// `solsim validate` prints.
+    ///
+    /// # Errors
+    /// A [`ScenarioError`] naming the file and the first field at fault, when a field is
+    /// malformed or a file cannot be read.
+    pub fn inspect_within(
+        path: &Path,
+        budget: MemoryBudget,
+    ) -> Result<(Self, Vec<crate::sanity::Finding>), ScenarioError> {
+        let scenario = Self::build(ScenarioSpec::load(path)?, budget)?;
+        let findings = crate::sanity::findings(&scenario);
+        Ok((scenario, findings))
     }
 
     /// Reads the maps and zones a validated [`ScenarioSpec`] names, checks the route and the
