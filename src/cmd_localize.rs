@@ -44,13 +44,23 @@ pub fn table(method: Method, r: &BenchmarkReport) -> String {
     s.push_str(&row("all", &r.all));
     s.push_str(&row("accepted", &r.accepted));
     for (kind, e) in &r.by_terrain {
-        s.push_str(&row(&format!("{kind:?}").to_lowercase(), e));
+        s.push_str(&row(kind.name(), e));
     }
     let rejected: usize = r.rejections.iter().map(|(_, n)| n).sum();
+    let reasons = if r.rejections.is_empty() {
+        String::new()
+    } else {
+        let each: Vec<String> = r
+            .rejections
+            .iter()
+            .map(|(name, n)| format!("{} {n}", name.replace('_', " ")))
+            .collect();
+        format!(" ({})", each.join(", "))
+    };
     let _ = writeln!(
         s,
-        "  rejected by validity checks: {rejected} {:?}; could not run: {}",
-        r.rejections, r.failures
+        "  rejected by validity checks: {rejected}{reasons}; could not run: {}",
+        r.failures
     );
     s
 }

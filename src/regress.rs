@@ -20,7 +20,9 @@ pub struct CaseResult {
     /// What a statistical expectation measured (rates and paired differences with their
     /// 95 % intervals), printed beside it; empty for checks of one run.
     pub measured: Vec<String>,
-    /// Seconds spent running the scenario (shared by its cases).
+    /// Wall-clock seconds this case cost: its share of the scenario's load and single runs
+    /// (split equally among the checks of one run), or of the sweep it needed (split among
+    /// the statistical entries sharing it).
     pub seconds: f64,
 }
 
@@ -35,7 +37,7 @@ pub fn check_scenario(
     let start = std::time::Instant::now();
     let scenario = Scenario::load_within(path, budget)?;
     let checked = scenario.check_expectations();
-    let one_run_s = start.elapsed().as_secs_f64();
+    let one_run_s = start.elapsed().as_secs_f64() / scenario.expectations.len().max(1) as f64;
     let mut results: Vec<(usize, CaseResult)> = scenario
         .expectations
         .iter()
@@ -52,9 +54,7 @@ pub fn check_scenario(
             (e.index, case)
         })
         .collect();
-    let start = std::time::Instant::now();
     let swept = sweep::expect::check_statistical(&scenario);
-    let sweep_s = start.elapsed().as_secs_f64();
     results.extend(
         scenario
             .statistical_expectations
@@ -67,7 +67,7 @@ pub fn check_scenario(
                     what: format!("{} (over {} runs)", e.what, e.runs),
                     mismatches: r.mismatches,
                     measured: r.measured,
-                    seconds: sweep_s,
+                    seconds: r.seconds,
                 };
                 (e.index, case)
             }),
@@ -124,8 +124,9 @@ fn xml_escape(s: &str) -> String {
 #[must_use]
 pub fn junit(results: &[CaseResult]) -> String {
     let failed = results.iter().filter(|r| !r.mismatches.is_empty()).count();
+    let total_s: f64 = results.iter().map(|r| r.seconds).sum();
     let mut s = format!(
-        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite name=\"solsim-regress\" tests=\"{}\" failures=\"{failed}\">\n",
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite name=\"solsim-regress\" tests=\"{}\" failures=\"{failed}\" time=\"{total_s:.3}\">\n",
         results.len()
     );
     for r in results {

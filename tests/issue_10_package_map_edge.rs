@@ -128,17 +128,21 @@ fn corridor_across_the_south_edge_is_packaged() {
     );
 }
 
-/// The bundled sol383-386 scenario with `route` instead of its own and a coarse planning grid,
-/// written into `dir` (its map and zones paths made absolute).
+/// The bundled sol383-386 scenario with `route` instead of its own, a coarse planning grid and
+/// no zones (its keep-in corridor does not reach the map's corners, and a start outside the
+/// keep-in is refused: issue 13), written into `dir` (its map paths made absolute).
 fn scenario_with_route(dir: &Path, route: [[f64; 2]; 2]) -> PathBuf {
     let scenarios = root().join("scenarios");
+    let zones = dir.join("no-zones.geojson");
+    std::fs::write(&zones, r#"{"type": "FeatureCollection", "features": []}"#).expect("zones");
     let text = std::fs::read_to_string(scenarios.join("sol383-386.toml")).expect("scenario");
     let text: String = text
         .lines()
         .map(|line| match line.split_once(" = \"") {
-            Some((key @ ("appearance" | "dem" | "terrain" | "zones"), path)) => {
+            Some((key @ ("appearance" | "dem" | "terrain"), path)) => {
                 format!("{key} = \"{}/{path}\n", scenarios.display())
             }
+            Some(("zones", _)) => format!("zones = {:?}\n", zones.display().to_string()),
             _ if line.starts_with("waypoints = ") => format!("waypoints = {route:?}\n"),
             // The package does not use the planning grid: a coarse one loads faster.
             _ if line == "resolution_m = 1.0" => "resolution_m = 8.0\n".to_owned(),

@@ -47,6 +47,7 @@ pub(crate) const PATCH_MARGIN_M: f64 = 4.0;
 
 /// The terrain type of a benchmark case (paper 000 Fig. 8: rocky, plains, dunes).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
 pub enum TerrainKind {
     /// Mostly bedrock with craters: rich texture, many rocks.
     Rocky,
@@ -61,6 +62,16 @@ pub enum TerrainKind {
 impl TerrainKind {
     /// Every kind, in order.
     pub const ALL: [TerrainKind; 3] = [TerrainKind::Rocky, TerrainKind::Plain, TerrainKind::Dunes];
+
+    /// `rocky`, `plain` or `dunes`, as printed and serialised.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            TerrainKind::Rocky => "rocky",
+            TerrainKind::Plain => "plain",
+            TerrainKind::Dunes => "dunes",
+        }
+    }
 }
 
 /// The generator settings of the procedural map of `kind` ([`MAP_SIZE_M`] square, 1 m
@@ -352,22 +363,13 @@ pub struct BenchmarkReport {
     pub accepted: ErrorStats,
     /// Statistics per terrain kind (every case that ran), in [`TerrainKind::ALL`] order.
     pub by_terrain: Vec<(TerrainKind, ErrorStats)>,
-    /// Rejections by reason (`"TooFewValid"`, `"Ambiguous"`, `"Imprecise"`, `"OnWindowEdge"`),
+    /// Rejections by reason ([`Rejection::NAMES`]: `too_few_valid`, `ambiguous`, `imprecise`, `on_window_edge`),
     /// with counts, in that order, zero counts left out.
     pub rejections: Vec<(&'static str, usize)>,
     /// Cases that could not be run.
     pub failures: usize,
     /// One row per case, in case order.
     pub rows: Vec<CaseResult>,
-}
-
-fn rejection_name(r: &Rejection) -> &'static str {
-    match r {
-        Rejection::TooFewValid { .. } => "TooFewValid",
-        Rejection::Ambiguous { .. } => "Ambiguous",
-        Rejection::Imprecise { .. } => "Imprecise",
-        Rejection::OnWindowEdge => "OnWindowEdge",
-    }
 }
 
 /// Renders and localizes every case against `layers_for(case.terrain)` with `params` and the
@@ -464,12 +466,12 @@ pub fn report_of(rows: Vec<CaseResult>) -> BenchmarkReport {
             (k, ErrorStats::of(&e))
         })
         .collect();
-    let rejections = ["TooFewValid", "Ambiguous", "Imprecise", "OnWindowEdge"]
+    let rejections = Rejection::NAMES
         .into_iter()
         .map(|name| {
             let n = rows
                 .iter()
-                .filter(|r| r.rejection.as_ref().map(rejection_name) == Some(name))
+                .filter(|r| r.rejection.as_ref().map(Rejection::name) == Some(name))
                 .count();
             (name, n)
         })

@@ -220,6 +220,24 @@ pub enum Rejection {
     OnWindowEdge,
 }
 
+impl Rejection {
+    /// Every reason's [`Rejection::name`], in declaration order.
+    pub const NAMES: [&'static str; 4] =
+        ["too_few_valid", "ambiguous", "imprecise", "on_window_edge"];
+
+    /// The reason as a short snake-case name (`on_window_edge`), as tables and JSON counts
+    /// print it; [`std::fmt::Display`] gives the sentence with the measured value.
+    #[must_use]
+    pub fn name(&self) -> &'static str {
+        match self {
+            Rejection::TooFewValid { .. } => Self::NAMES[0],
+            Rejection::Ambiguous { .. } => Self::NAMES[1],
+            Rejection::Imprecise { .. } => Self::NAMES[2],
+            Rejection::OnWindowEdge => Self::NAMES[3],
+        }
+    }
+}
+
 impl std::fmt::Display for Rejection {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {

@@ -136,6 +136,25 @@ pub enum Blocker {
     MandatoryLost(TaskId),
 }
 
+impl std::fmt::Display for Blocker {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Blocker::AlreadyDone => write!(f, "already done"),
+            Blocker::PreconditionMissing => write!(f, "a precondition has not run"),
+            Blocker::DrivenWindowMissed => {
+                write!(f, "the metres driven are outside its window")
+            }
+            Blocker::WindowMissed => write!(f, "its latest start has passed"),
+            Blocker::Battery => write!(f, "the battery cannot supply it in time"),
+            Blocker::EndOfSol => write!(f, "it would end after the sol window"),
+            Blocker::DataVolume => write!(f, "its data would overflow the data volume"),
+            Blocker::MandatoryLost(t) => {
+                write!(f, "it would make mandatory task #{} miss its window", t.0)
+            }
+        }
+    }
+}
+
 /// A fixed-size set of task ids.
 #[derive(Debug, PartialEq, Eq, Hash)]
 pub(crate) struct TaskSet(Vec<u64>);

@@ -96,6 +96,59 @@ pub enum Violation {
     },
 }
 
+impl std::fmt::Display for Violation {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Violation::UnknownTask { step } => write!(f, "step {step} names an unknown task"),
+            Violation::Repeated { step } => {
+                write!(f, "step {step} repeats a task already done")
+            }
+            Violation::WrongDuration {
+                step,
+                expected_s,
+                found_s,
+            } => write!(
+                f,
+                "step {step} lasts {found_s} s where its task takes {expected_s} s"
+            ),
+            Violation::OutsideWindow { step, start_s } => {
+                write!(f, "step {step} starts at {start_s} s, outside its window")
+            }
+            Violation::Overlap { step } => {
+                write!(f, "step {step} starts before the one before it ends")
+            }
+            Violation::LinkOverlap { step, other } => write!(
+                f,
+                "step {step} starts on the HBS link before task #{} ends",
+                other.0
+            ),
+            Violation::PastEndOfSol { step } => {
+                write!(f, "step {step} ends after the sol window")
+            }
+            Violation::MissingPrecondition { step, precondition } => write!(
+                f,
+                "step {step} starts before its precondition, task #{}, has ended",
+                precondition.0
+            ),
+            Violation::OutsideDrivenWindow { step, driven_m } => write!(
+                f,
+                "step {step} starts at {driven_m:.1} m driven, outside its window"
+            ),
+            Violation::BatteryEmpty { step, energy_wh } => write!(
+                f,
+                "step {step} empties the battery ({energy_wh:.1} Wh at its end)"
+            ),
+            Violation::DataFull { step, data_mb } => write!(
+                f,
+                "step {step} overflows the data volume ({data_mb:.1} MB after it)"
+            ),
+            Violation::MissingMandatory { task } => {
+                write!(f, "mandatory task #{} is neither done nor planned", task.0)
+            }
+        }
+    }
+}
+
 /// Every violation of `plan` run from `state` on `instance`; empty means the plan is valid.
 ///
 /// The battery is simulated exactly: it charges at `recharge_w` while idle and at

@@ -408,7 +408,7 @@ impl RawExpectation {
                             path,
                             f("paired.share"),
                             "at_most = a difference together with share = [low, high]",
-                            format!("at_most {:?}, share {:?}", p.at_most, p.share),
+                            given_share(p.at_most, p.share),
                         ));
                     }
                     if p.mean.is_none() && p.share.is_none() {
@@ -458,7 +458,7 @@ impl RawExpectation {
                                 path,
                                 f("paired.share"),
                                 "at_most = a finite difference together with share = [low, high], fractions with 0 ≤ low ≤ high ≤ 1",
-                                format!("at_most {at_most:?}, share {share:?}"),
+                                given_share(at_most, share),
                             ));
                         }
                     }
@@ -801,4 +801,13 @@ impl Expectation {
         }
         out
     }
+}
+
+/// `at_most` and `share` as written, for an error message (`at_most -1, share none`).
+fn given_share(at_most: Option<f64>, share: Option<[f64; 2]>) -> String {
+    format!(
+        "at_most {}, share {}",
+        at_most.map_or("none".into(), |a| a.to_string()),
+        share.map_or("none".into(), |[lo, hi]| format!("[{lo}, {hi}]"))
+    )
 }

@@ -20,6 +20,10 @@ pub struct StatResult {
     /// What was measured, one phrase per check, e.g. `no_path_rate 0.050 [0.017, 0.139]
     /// over 200 runs`.
     pub measured: Vec<String>,
+    /// Wall-clock seconds this expectation cost: its share of the sweep it needed (a sweep
+    /// shared by several expectations is split equally among them) plus its own check.
+    /// Filled in by [`check_statistical`]; 0 from [`check`].
+    pub seconds: f64,
 }
 
 /// Sweeps what the scenario's statistical expectations need — runs `0..runs` under the
@@ -36,7 +40,7 @@ pub fn check_statistical(scenario: &Scenario) -> Vec<StatResult> {
             }
         }
     }
-    let swept: BTreeMap<SweepKey, Vec<RunRow>> = by_runs
+    let swept: BTreeMap<SweepKey, (Vec<RunRow>, f64)> = by_runs
         .into_iter()
         .map(|((runs, errors, shortening), mut strategies)| {
             strategies.sort_by_key(|s| s.stream_id());
@@ -48,22 +52,36 @@ pub fn check_statistical(scenario: &Scenario) -> Vec<StatResult> {
                 sc = sc.with_preemptive_shortening(on);
             }
             let sc = &sc;
+            let start = std::time::Instant::now();
             let spec = SweepSpec {
                 strategies,
                 baseline: None,
                 shard: None,
                 ..SweepSpec::new(sc, runs)
             };
-            (
-                (runs, errors, shortening),
-                run_in_memory(sc, &spec, 0..runs),
-            )
+            let rows = run_in_memory(sc, &spec, 0..runs);
+            let seconds = start.elapsed().as_secs_f64();
+            ((runs, errors, shortening), (rows, seconds))
         })
         .collect();
+    let sharing = |k: &SweepKey| {
+        let n = scenario
+            .statistical_expectations
+            .iter()
+            .filter(|e| key(e) == *k)
+            .count();
+        n.max(1) as f64
+    };
     scenario
         .statistical_expectations
         .iter()
-        .map(|e| check(e, &swept[&key(e)], scenario.seed(), SolBounds::of(scenario)))
+        .map(|e| {
+            let start = std::time::Instant::now();
+            let (rows, sweep_s) = &swept[&key(e)];
+            let mut r = check(e, rows, scenario.seed(), SolBounds::of(scenario));
+            r.seconds = sweep_s / sharing(&key(e)) + start.elapsed().as_secs_f64();
+            r
+        })
         .collect()
 }
 
@@ -98,6 +116,7 @@ pub fn check(
     let mut out = StatResult {
         mismatches: Vec::new(),
         measured: Vec::new(),
+        seconds: 0.0,
     };
     for c in &e.checks {
         let (holds, check, expected, text) = match *c {

@@ -111,9 +111,9 @@ impl SolExecution {
         let v = validate_plan(&self.inst, &self.state, &self.remaining);
         self.violations.extend(v.iter().map(|v| {
             format!(
-                "{which} at {}: {v:?}: {:?}",
+                "{which} at {}: {v}; plan: {}",
                 lmst(self.state.time_s),
-                self.remaining.describe(&self.inst)
+                self.remaining.describe(&self.inst).join(", ")
             )
         }));
     }
@@ -195,8 +195,15 @@ impl SolExecution {
                 ..
             }) => {
                 if disruption.is_none() {
+                    let reason = match reason {
+                        planner::Blocker::MandatoryLost(t) => format!(
+                            "it would make mandatory {} miss its window",
+                            self.inst.task(t).name
+                        ),
+                        other => other.to_string(),
+                    };
                     self.changes.push(format!(
-                        "{}: {name} ended {}: {} no longer fits ({reason:?}): replanned",
+                        "{}: {name} ended {}: {} no longer fits ({reason}): replanned",
                         end.lmst(),
                         slip(end, planned_end),
                         self.inst.task(task).name
@@ -361,8 +368,8 @@ impl SolExecution {
         let mut violations = self.violations;
         if !self.remaining.steps.is_empty() {
             violations.push(format!(
-                "not executed: {:?}",
-                self.remaining.describe(&self.inst)
+                "not executed: {}",
+                self.remaining.describe(&self.inst).join(", ")
             ));
         }
         SolPlan {
