@@ -128,6 +128,29 @@ enum Command {
     /// (the command each calibrated default names).
     #[command(subcommand)]
     Calibrate(solsim::cmd_calibrate::CalibrateCommand),
+    /// Print a shell completion script for solsim on standard output.
+    ///
+    /// bash: `solsim completions bash > ~/.local/share/bash-completion/completions/solsim`;
+    /// zsh: `solsim completions zsh > ~/.zfunc/_solsim` (with `fpath+=~/.zfunc` before
+    /// `compinit`); fish: `solsim completions fish > ~/.config/fish/completions/solsim.fish`.
+    Completions(CompletionsArgs),
+    /// Print solsim's manual page (roff) on standard output, or with --out write one page per
+    /// command (solsim.1, solsim-compare.1, …) into a directory: `solsim man | man -l -`.
+    Man(ManArgs),
+}
+
+#[derive(Args)]
+struct CompletionsArgs {
+    /// The shell.
+    shell: clap_complete::Shell,
+}
+
+#[derive(Args)]
+struct ManArgs {
+    /// Directory for one page per command (created if missing); without it the top-level page
+    /// goes to standard output.
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
 }
 
 #[derive(Subcommand)]
@@ -338,7 +361,50 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
             cmd_package::run(&a, budget, stdout)?;
             Ok(ExitCode::SUCCESS)
         }
+        Command::Completions(a) => {
+            use clap::CommandFactory as _;
+            clap_complete::generate(a.shell, &mut Cli::command(), "solsim", stdout);
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Man(a) => {
+            use clap::CommandFactory as _;
+            man_pages(Cli::command(), a.out.as_deref(), stdout)?;
+            Ok(ExitCode::SUCCESS)
+        }
     }
+}
+
+/// The top-level manual page on `stdout`, or with `out` one page per command and subcommand
+/// (`solsim-sweep-merge.1`), each written to a temporary file and renamed into place.
+fn man_pages(
+    cmd: clap::Command,
+    out: Option<&Path>,
+    stdout: &mut dyn std::io::Write,
+) -> anyhow::Result<()> {
+    let Some(dir) = out else {
+        clap_mangen::Man::new(cmd).render(stdout)?;
+        return Ok(());
+    };
+    std::fs::create_dir_all(dir).with_context(|| format!("--out {}", dir.display()))?;
+    fn write_all(cmd: clap::Command, name: String, dir: &Path) -> anyhow::Result<usize> {
+        let mut pages = 1;
+        for sub in cmd.get_subcommands().filter(|s| s.get_name() != "help") {
+            pages += write_all(sub.clone(), format!("{name}-{}", sub.get_name()), dir)?;
+        }
+        let mut roff = Vec::new();
+        let cmd = cmd
+            .display_name(name.clone())
+            .version(env!("CARGO_PKG_VERSION"));
+        clap_mangen::Man::new(cmd).render(&mut roff)?;
+        let path = dir.join(format!("{name}.1"));
+        let tmp = dir.join(format!(".{name}.1.tmp"));
+        std::fs::write(&tmp, roff).with_context(|| format!("--out: {}", tmp.display()))?;
+        std::fs::rename(&tmp, &path).with_context(|| format!("--out: {}", path.display()))?;
+        Ok(pages)
+    }
+    let pages = write_all(cmd, "solsim".into(), dir)?;
+    writeln!(stdout, "wrote {pages} manual pages to {}", dir.display())?;
+    Ok(())
 }
 
 fn compare(
