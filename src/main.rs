@@ -134,6 +134,14 @@ enum Command {
     /// zsh: `solsim completions zsh > ~/.zfunc/_solsim` (with `fpath+=~/.zfunc` before
     /// `compinit`); fish: `solsim completions fish > ~/.config/fish/completions/solsim.fish`.
     Completions(CompletionsArgs),
+    /// Print the JSON Schema (draft 2020-12) of a file format: `scenario` or `campaign` (the
+    /// `solsim plan` files).
+    ///
+    /// Generated from the structures the loaders parse, so it names every field they accept.
+    /// It checks names and types; values, files and the whole are checked by `solsim validate`.
+    /// For editors: `solsim schema scenario > scenario.schema.json`, then a first line
+    /// `#:schema ./scenario.schema.json` in a scenario file (Taplo / Even Better TOML).
+    Schema(SchemaArgs),
     /// Print solsim's manual page (roff) on standard output, or with --out write one page per
     /// command (solsim.1, solsim-compare.1, …) into a directory: `solsim man | man -l -`.
     Man(ManArgs),
@@ -143,6 +151,20 @@ enum Command {
 struct CompletionsArgs {
     /// The shell.
     shell: clap_complete::Shell,
+}
+
+#[derive(Args)]
+struct SchemaArgs {
+    /// The file format.
+    format: SchemaFormat,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum SchemaFormat {
+    /// Scenario files (`solsim compare`, `run`, `sweep`, `validate`, …).
+    Scenario,
+    /// Campaign files of `solsim plan`.
+    Campaign,
 }
 
 #[derive(Args)]
@@ -364,6 +386,14 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Completions(a) => {
             use clap::CommandFactory as _;
             clap_complete::generate(a.shell, &mut Cli::command(), "solsim", stdout);
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Schema(a) => {
+            let schema = match a.format {
+                SchemaFormat::Scenario => study::schema::scenario(),
+                SchemaFormat::Campaign => study::schema::campaign(),
+            };
+            writeln!(stdout, "{}", serde_json::to_string_pretty(&schema)?)?;
             Ok(ExitCode::SUCCESS)
         }
         Command::Man(a) => {

@@ -57,7 +57,7 @@ use sim::calendar::Calendar;
 use sim::{CampaignOutcome, FaultKind, Strategy};
 
 /// `[[expect]]` as written.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RawExpectation {
     #[serde(default)]
@@ -90,7 +90,7 @@ pub struct RawExpectation {
     paired: Option<RawPaired>,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct RawPaired {
     baseline: String,
@@ -194,7 +194,7 @@ pub enum Resolved {
     Sweep(StatisticalExpectation),
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct RawScience {
     campaign: String,
@@ -202,14 +202,14 @@ struct RawScience {
     failed: Option<[u32; 2]>,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct RawSooner {
     strategy: String,
     by_at_least_sols: u32,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct RawCovers {
     from_sol: u32,

@@ -11,6 +11,7 @@
 //! - [`science`]: a scenario's `[science]` section (targets and campaign intents).
 //! - [`campaign_file`]: the one-sol campaign files of `solsim plan` ([`CampaignFile`]).
 //! - [`recipe`]: procedural map recipes of `solsim map generate`.
+//! - [`schema`]: JSON Schemas of the scenario and campaign file formats.
 //! - [`sanity`]: a scenario that is well formed field by field but nonsense as a whole (a
 //!   route in degrees, a waypoint in a keep-out, a leg closed at r = 0), as errors and warnings.
 //! - [`error`]: [`ScenarioError`], one line naming the file, the field and what was expected.
@@ -61,6 +62,7 @@ pub mod input;
 pub mod recipe;
 pub mod sanity;
 pub mod scenario;
+pub mod schema;
 pub mod science;
 
 pub use campaign_file::{CampaignFile, PlanFileError};

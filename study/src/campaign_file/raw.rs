@@ -4,8 +4,14 @@
 use serde::Deserialize;
 
 /// The file as written.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
+#[schemars(
+    title = "solsim campaign file",
+    description = "A one-sol campaign file of `solsim plan` (TOML): the sol's window, battery \
+                   and data, activities and science campaigns. The schema checks names and \
+                   types; `solsim plan` checks values (README, \"Campaign file format\")."
+)]
 pub(crate) struct RawCampaignFile {
     #[serde(default)]
     pub(crate) name: String,
@@ -18,7 +24,7 @@ pub(crate) struct RawCampaignFile {
     pub(crate) campaigns: Vec<RawCampaign>,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawSol {
     pub(crate) start_lmst: String,
@@ -30,7 +36,7 @@ pub(crate) struct RawSol {
     pub(crate) initial_data_mb: Option<f64>,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawActivity {
     pub(crate) id: String,
@@ -53,7 +59,7 @@ pub(crate) struct RawActivity {
     pub(crate) timeline: Option<String>,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawDrive {
     pub(crate) length_m: f64,
@@ -64,7 +70,7 @@ pub(crate) struct RawDrive {
     pub(crate) latest_end_lmst: Option<String>,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawCampaign {
     pub(crate) id: String,
@@ -88,7 +94,7 @@ pub(crate) struct RawCampaign {
     pub(crate) template: Option<RawTemplate>,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawTemplate {
     pub(crate) id: Option<String>,
@@ -103,7 +109,7 @@ pub(crate) struct RawTemplate {
 
 /// A simulator scenario's `[science]` section: targets on the map and campaign intents in the
 /// campaign-file schema.
-#[derive(Debug, Default, Deserialize)]
+#[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RawScience {
     #[serde(default)]
@@ -112,7 +118,7 @@ pub struct RawScience {
     pub(crate) campaigns: Vec<RawCampaign>,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawTarget {
     pub(crate) id: String,

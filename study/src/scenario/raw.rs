@@ -7,8 +7,15 @@ use serde::Deserialize;
 use crate::expect::RawExpectation;
 
 /// The file as written.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
+#[schemars(
+    title = "solsim scenario",
+    description = "A solsim scenario file (TOML): map, rover, error model, operations rules, \
+                   route, calendar of sols, science and [[expect]] entries. The schema checks \
+                   names and types; `solsim validate` checks values, files and the whole \
+                   (README, \"Input formats\")."
+)]
 pub struct RawScenario {
     pub(crate) name: String,
     #[serde(default)]
@@ -36,14 +43,14 @@ pub struct RawScenario {
     pub(crate) expect: Vec<RawExpectation>,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawStudySegment {
     pub(crate) from_sol: u32,
     pub(crate) distance_m: f64,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawMap {
     pub(crate) appearance: PathBuf,
@@ -57,14 +64,14 @@ pub(crate) struct RawMap {
     pub(crate) origin_m: Option<[f64; 2]>,
 }
 
-#[derive(Debug, Default, Deserialize)]
+#[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawGrid {
     pub(crate) resolution_m: Option<f64>,
     pub(crate) max_slope_deg: Option<f64>,
 }
 
-#[derive(Debug, Default, Deserialize)]
+#[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawPerTerrain {
     pub(crate) sand: Option<f64>,
@@ -72,7 +79,7 @@ pub(crate) struct RawPerTerrain {
     pub(crate) bedrock: Option<f64>,
 }
 
-#[derive(Debug, Default, Deserialize)]
+#[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawRover {
     pub(crate) footprint_radius_m: Option<f64>,
@@ -83,7 +90,7 @@ pub(crate) struct RawRover {
     pub(crate) edge_buffer_m: Option<f64>,
 }
 
-#[derive(Debug, Default, Deserialize)]
+#[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawErrors {
     pub(crate) model: Option<String>,
@@ -96,7 +103,7 @@ pub(crate) struct RawErrors {
     pub(crate) ground_localization_sigma_m: Option<f64>,
 }
 
-#[derive(Debug, Default, Deserialize)]
+#[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawUncertainty {
     pub(crate) k_vo: Option<f64>,
@@ -104,7 +111,7 @@ pub(crate) struct RawUncertainty {
     pub(crate) initial_margin_m: Option<f64>,
 }
 
-#[derive(Debug, Default, Deserialize)]
+#[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawLocalizer {
     pub(crate) localizer: Option<String>,
@@ -117,7 +124,7 @@ pub(crate) struct RawLocalizer {
     pub(crate) operator_margin_m: Option<f64>,
 }
 
-#[derive(Debug, Default, Deserialize)]
+#[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawOperations {
     pub(crate) drive_start_lmst: Option<String>,
@@ -130,13 +137,13 @@ pub(crate) struct RawOperations {
     pub(crate) preemptive_shortening: Option<bool>,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawRoute {
     pub(crate) waypoints: Vec<[f64; 2]>,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawSol {
     pub(crate) sol: u32,
