@@ -5,9 +5,12 @@
 use std::fmt::Write as _;
 
 use localization::benchmark_set::{
-    BenchmarkMaps, BenchmarkReport, ErrorStats, PAPER_CASE_COUNT, benchmark_cases, run_benchmark,
+    BenchmarkImaging, BenchmarkMaps, BenchmarkReport, ErrorStats, PAPER_CASE_COUNT,
+    benchmark_cases, run_benchmark_reporting,
 };
 use localization::matcher::{MatchParams, Method};
+
+use crate::progress::Progress;
 
 /// Arguments of `solsim localize-bench`.
 #[derive(Debug, clap::Args)]
@@ -87,7 +90,15 @@ pub fn run(args: &LocalizeBenchArgs, out: &mut dyn std::io::Write) -> anyhow::Re
             ..MatchParams::default()
         };
         let start = std::time::Instant::now();
-        let report = run_benchmark(&cases, |k| maps.get(k), &params);
+        let progress = Progress::new(false, method.name(), "cases", cases.len() as u64);
+        let report = run_benchmark_reporting(
+            &cases,
+            |k| maps.get(k),
+            &params,
+            &BenchmarkImaging::default(),
+            &|n| progress.update(n, cases.len() as u64),
+        );
+        progress.finish();
         if args.json {
             docs.push(serde_json::json!({ "method": method.name(), "report": report }));
         } else {
@@ -127,6 +138,9 @@ pub struct SeuArgs {
     /// Probability that a run stalls.
     #[arg(long, default_value_t = 0.02)]
     pub p_stall: f64,
+    /// Print JSON: `{"runs", "seed", "probabilities": {...}, "counts": {...}, "seconds"}`.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Run the seeded upset-injection campaign on a real localization (census on a synthetic
@@ -226,11 +240,50 @@ pub fn seu(args: &SeuArgs, out: &mut dyn std::io::Write) -> anyhow::Result<()> {
             Err(format!("not an accepted localization: {}", text.trim()))
         }
     };
-    let c = seu_campaign(args.runs, args.seed, &params, &inputs, algorithm, validate);
+    let progress = Progress::new(false, "seu-campaign", "runs", u64::from(args.runs));
+    let c = seu_campaign(
+        args.runs,
+        args.seed,
+        &params,
+        &inputs,
+        algorithm,
+        validate,
+        |n| progress.update(u64::from(n), u64::from(args.runs)),
+    );
+    progress.finish();
+    if args.json {
+        let doc = serde_json::json!({
+            "runs": c.runs,
+            "seed": args.seed,
+            "probabilities": {
+                "storage": args.p_storage,
+                "memory": args.p_memory,
+                "output": args.p_output,
+                "stall": args.p_stall,
+            },
+            "counts": c,
+            "seconds": start.elapsed().as_secs_f64(),
+        });
+        writeln!(out, "{}", serde_json::to_string_pretty(&doc)?)?;
+    } else {
+        seu_text(&c, args.seed, start, out)?;
+    }
+    if c.corrupted_applied > 0 {
+        anyhow::bail!("{} corrupted results were applied", c.corrupted_applied);
+    }
+    Ok(())
+}
+
+fn seu_text(
+    c: &localization::hbs::SeuCounts,
+    seed: u64,
+    start: std::time::Instant,
+    out: &mut dyn std::io::Write,
+) -> anyhow::Result<()> {
     writeln!(
         out,
         "HBS upset-injection campaign: {} onboard localizations (census on a synthetic post-drive scene), seed {}",
-        c.runs, args.seed
+        c.runs, seed
     )?;
     writeln!(
         out,
@@ -255,8 +308,5 @@ pub fn seu(args: &SeuArgs, out: &mut dyn std::io::Write) -> anyhow::Result<()> {
         c.corrupted_applied
     )?;
     writeln!(out, "  ({:.1} s)", start.elapsed().as_secs_f64())?;
-    if c.corrupted_applied > 0 {
-        anyhow::bail!("{} corrupted results were applied", c.corrupted_applied);
-    }
     Ok(())
 }

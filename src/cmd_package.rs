@@ -98,6 +98,10 @@ pub struct PackageArgs {
     /// with it).
     #[arg(long, default_value_t = BLOCK_M, value_name = "M", hide = true)]
     pub block_m: usize,
+    /// Print what was written as JSON (corridor area, pixels, tiles with their files, sizes
+    /// and MD5s, total bytes, datum, seconds) instead of the text summary.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Seeds and orbital settings of one package: everything a block's pixels depend on besides
@@ -428,6 +432,8 @@ pub fn run(
     let datum_m = datum_for(layers, &layout);
 
     let mut tiles = Vec::new();
+    let progress =
+        crate::progress::Progress::new(false, "map package", "tiles", layout.tiles.len() as u64);
     for tile in &layout.tiles {
         let tag = format!("r{:02}_c{:03}", tile.row, tile.col);
         let app_name = format!("appearance_{tag}.png");
@@ -467,7 +473,9 @@ pub fn run(
             appearance,
             dem,
         });
+        progress.inc();
     }
+    progress.finish();
 
     let kept_px = tiles.iter().fold([0, 0], |acc, t| {
         [acc[0] + t.appearance.kept_px, acc[1] + t.dem.kept_px]
@@ -529,11 +537,15 @@ pub fn run(
         datum_m,
         seconds: start.elapsed().as_secs_f64(),
     };
-    write!(
-        out,
-        "{}",
-        summary_text(&scenario.name, &args.out, &layout, &summary)
-    )?;
+    if args.json {
+        writeln!(out, "{}", serde_json::to_string_pretty(&summary)?)?;
+    } else {
+        write!(
+            out,
+            "{}",
+            summary_text(&scenario.name, &args.out, &layout, &summary)
+        )?;
+    }
     Ok(())
 }
 

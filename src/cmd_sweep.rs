@@ -4,11 +4,11 @@
 //! `sweep slurm` prints a Slurm job-array submit script.
 
 use std::fmt::Write as _;
-use std::io::{IsTerminal as _, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
+use crate::progress::Progress;
 use anyhow::Context as _;
 use clap::{Args, Subcommand};
 use maps::MemoryBudget;
@@ -171,83 +171,12 @@ fn spec(what: &SweepWhat, scenario: &Scenario) -> anyhow::Result<SweepSpec> {
     Ok(spec)
 }
 
-/// Prints progress to stderr: a bar on a terminal, a plain line every 10 s otherwise (and one
-/// at the end), starting with `label` (`sweep: 40/200 runs …`).
-pub(crate) struct Progress {
-    label: &'static str,
-    bar: Option<indicatif::ProgressBar>,
-    plain: Option<Mutex<Instant>>,
-    started: Instant,
-    first_done: Mutex<Option<u64>>,
-}
-
-impl Progress {
-    pub(crate) fn new(quiet: bool, label: &'static str) -> Self {
-        let tty = std::io::stderr().is_terminal();
-        let bar = (!quiet && tty).then(|| {
-            let bar = indicatif::ProgressBar::new(0);
-            bar.set_style(
-                indicatif::ProgressStyle::with_template(
-                    "{bar:40} {pos}/{len} runs  {per_sec}  ETA {eta}",
-                )
-                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-            );
-            bar
-        });
-        Self {
-            label,
-            bar,
-            plain: (!quiet && !tty).then(|| Mutex::new(Instant::now())),
-            started: Instant::now(),
-            first_done: Mutex::new(None),
-        }
-    }
-
-    pub(crate) fn update(&self, done: u64, total: u64) {
-        let first = *self
-            .first_done
-            .lock()
-            .unwrap_or_else(std::sync::PoisonError::into_inner)
-            .get_or_insert(done);
-        if let Some(bar) = &self.bar {
-            bar.set_length(total);
-            bar.set_position(done);
-        }
-        if let Some(last) = &self.plain {
-            let mut last = last
-                .lock()
-                .unwrap_or_else(std::sync::PoisonError::into_inner);
-            if last.elapsed() >= Duration::from_secs(10) || done == total {
-                *last = Instant::now();
-                let secs = self.started.elapsed().as_secs_f64();
-                let rate = (done - first) as f64 / secs.max(1e-9);
-                let eta = if rate > 0.0 {
-                    format!(", ETA {:.0} s", (total - done) as f64 / rate)
-                } else {
-                    String::new()
-                };
-                eprintln!(
-                    "{}: {done}/{total} runs ({:.0} %), {rate:.1} runs/s{eta}",
-                    self.label,
-                    100.0 * done as f64 / total.max(1) as f64
-                );
-            }
-        }
-    }
-
-    pub(crate) fn finish(&self) {
-        if let Some(bar) = &self.bar {
-            bar.finish_and_clear();
-        }
-    }
-}
-
 /// Runs the sweep `spec` in memory, with progress on stderr as a sweep shows it (labelled
 /// `compare`), and returns its summary: what `solsim compare --runs N` reports. Call
 /// [`SweepSpec::validate`] first.
 #[must_use]
 pub fn summary_in_memory(scenario: &Scenario, spec: &SweepSpec) -> Summary {
-    let progress = Progress::new(false, "compare");
+    let progress = Progress::new(false, "compare", "runs", 0);
     let summary = sweep::engine::summary_in_memory(scenario, spec, &|done, total| {
         progress.update(done, total);
     });
@@ -274,7 +203,7 @@ fn sweep(a: &SweepRunArgs, budget: MemoryBudget, stdout: &mut dyn Write) -> anyh
         .num_threads(a.threads.map_or(0, |t| t as usize))
         .build()
         .context("cannot start the worker threads")?;
-    let progress = Progress::new(a.quiet, "sweep");
+    let progress = Progress::new(a.quiet, "sweep", "runs", 0);
     let result = pool.install(|| {
         sweep::run(&scenario, &spec, &out, a.resume, &|done, total| {
             progress.update(done, total);

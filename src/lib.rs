@@ -26,6 +26,7 @@ pub mod cmd_sweep;
 pub mod cmd_validate;
 pub mod cmd_zones;
 pub mod output_set;
+pub mod progress;
 pub mod regress;
 pub mod report;
 pub mod report_runs;

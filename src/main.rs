@@ -248,6 +248,11 @@ struct RegressArgs {
     /// Also write a JUnit XML report here (for CI).
     #[arg(long, value_name = "FILE")]
     junit: Option<PathBuf>,
+    /// Print JSON instead of the text report: `{"passed", "failed", "cases": [{"scenario",
+    /// "case", "what", "ok", "measured", "mismatches": [{"check", "expected", "got"}],
+    /// "seconds"}]}`. The exit code is the same (1 on a mismatch).
+    #[arg(long)]
+    json: bool,
 }
 
 fn main() -> ExitCode {
@@ -333,7 +338,11 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
             for f in &files {
                 results.extend(regress::check_scenario(f, budget)?);
             }
-            write!(stdout, "{}", regress::text_report(&results))?;
+            if a.json {
+                writeln!(stdout, "{}", regress::json_report(&results))?;
+            } else {
+                write!(stdout, "{}", regress::text_report(&results))?;
+            }
             if let Some(path) = &a.junit {
                 report::write_atomic(path, regress::junit(&results).as_bytes()).with_context(
                     || format!("{}: cannot write the JUnit report", path.display()),

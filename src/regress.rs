@@ -113,6 +113,36 @@ pub fn text_report(results: &[CaseResult]) -> String {
     s
 }
 
+/// The report as JSON (`solsim regress --json`).
+#[must_use]
+pub fn json_report(results: &[CaseResult]) -> String {
+    let failed = results.iter().filter(|r| !r.mismatches.is_empty()).count();
+    let cases: Vec<serde_json::Value> = results
+        .iter()
+        .map(|r| {
+            serde_json::json!({
+                "scenario": r.scenario.display().to_string(),
+                "case": r.case,
+                "what": r.what,
+                "ok": r.mismatches.is_empty(),
+                "measured": r.measured,
+                "mismatches": r.mismatches.iter().map(|m| serde_json::json!({
+                    "check": m.check,
+                    "expected": m.expected,
+                    "got": m.got,
+                })).collect::<Vec<_>>(),
+                "seconds": r.seconds,
+            })
+        })
+        .collect();
+    let doc = serde_json::json!({
+        "passed": results.len() - failed,
+        "failed": failed,
+        "cases": cases,
+    });
+    serde_json::to_string_pretty(&doc).unwrap_or_default()
+}
+
 fn xml_escape(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('<', "&lt;")

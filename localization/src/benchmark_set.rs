@@ -439,9 +439,29 @@ pub fn run_benchmark_with<'a, F>(
 where
     F: Fn(TerrainKind) -> &'a MapLayers + Sync,
 {
+    run_benchmark_reporting(cases, layers_for, params, imaging, &|_| {})
+}
+
+/// [`run_benchmark_with`], calling `done(n)` as cases finish (`n` of them so far, from any
+/// thread, in no particular order): for a progress bar.
+pub fn run_benchmark_reporting<'a, F>(
+    cases: &[BenchmarkCase],
+    layers_for: F,
+    params: &MatchParams,
+    imaging: &BenchmarkImaging,
+    done: &(dyn Fn(u64) + Sync),
+) -> BenchmarkReport
+where
+    F: Fn(TerrainKind) -> &'a MapLayers + Sync,
+{
+    let finished = std::sync::atomic::AtomicU64::new(0);
     let rows: Vec<CaseResult> = cases
         .par_iter()
-        .map(|case| run_case(case, layers_for(case.terrain), params, imaging))
+        .map(|case| {
+            let row = run_case(case, layers_for(case.terrain), params, imaging);
+            done(finished.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
+            row
+        })
         .collect();
     report_of(rows)
 }

@@ -429,7 +429,8 @@ pub struct SeuCounts {
 
 /// Run `runs` activities with upsets injected, from `seed`, and count what happened. `validate`
 /// is the rover's validity check on a result (as in [`run_activity`]). Every applied result is
-/// compared with the fault-free result of the same inputs.
+/// compared with the fault-free result of the same inputs. `done(n)` is called after run `n`
+/// (1-based), for a progress bar.
 pub fn seu_campaign(
     runs: u32,
     seed: u64,
@@ -437,6 +438,7 @@ pub fn seu_campaign(
     inputs: &[HbsFile],
     algorithm: impl Fn(&[HbsFile]) -> Vec<u8>,
     validate: impl Fn(&[u8]) -> Result<(), String>,
+    done: impl Fn(u32),
 ) -> SeuCounts {
     use rand::SeedableRng;
     let golden = algorithm(inputs);
@@ -459,6 +461,7 @@ pub fn seu_campaign(
                 c.caught += u32::from(upset);
             }
         }
+        done(run + 1);
     }
     c
 }
@@ -605,7 +608,7 @@ mod tests {
             p_stall: 0.05,
             ..Default::default()
         };
-        let c = seu_campaign(2000, 42, &p, &inputs(), algorithm, |_| Ok(()));
+        let c = seu_campaign(2000, 42, &p, &inputs(), algorithm, |_| Ok(()), |_| {});
         assert_eq!(c.corrupted_applied, 0, "{c:?}");
         assert!(c.upsets_injected > 500, "{c:?}");
         assert_eq!(c.caught + c.harmless, c.runs_with_upsets, "{c:?}");
@@ -613,7 +616,7 @@ mod tests {
         // Same seed, same counts.
         assert_eq!(
             c,
-            seu_campaign(2000, 42, &p, &inputs(), algorithm, |_| Ok(()))
+            seu_campaign(2000, 42, &p, &inputs(), algorithm, |_| Ok(()), |_| {})
         );
     }
 }

@@ -1,0 +1,53 @@
+//! Progress on standard error for the commands that can run for more than a couple of
+//! seconds (`sweep`, `compare --runs`, `localize-bench`, `seu-campaign`, `map package`): a bar
+//! when standard error is a terminal, nothing when it is piped or redirected, so logs and
+//! captured output hold only results.
+
+use std::io::IsTerminal as _;
+
+/// A progress bar labelled `label` counting `unit` (`sweep ▕████    ▏ 40/200 runs …`), or
+/// nothing off a terminal or when quiet.
+pub struct Progress {
+    bar: Option<indicatif::ProgressBar>,
+}
+
+impl Progress {
+    /// A bar over `total` items (it may change with [`Progress::update`]); hidden when `quiet`
+    /// or when standard error is not a terminal.
+    #[must_use]
+    pub fn new(quiet: bool, label: &str, unit: &str, total: u64) -> Self {
+        let bar = (!quiet && std::io::stderr().is_terminal()).then(|| {
+            let bar = indicatif::ProgressBar::new(total);
+            let template =
+                format!("{label} {{bar:40}} {{pos}}/{{len}} {unit}  {{per_sec}}  ETA {{eta}}");
+            bar.set_style(
+                indicatif::ProgressStyle::with_template(&template)
+                    .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+            );
+            bar
+        });
+        Self { bar }
+    }
+
+    /// `done` of `total` finished.
+    pub fn update(&self, done: u64, total: u64) {
+        if let Some(bar) = &self.bar {
+            bar.set_length(total);
+            bar.set_position(done);
+        }
+    }
+
+    /// One more finished.
+    pub fn inc(&self) {
+        if let Some(bar) = &self.bar {
+            bar.inc(1);
+        }
+    }
+
+    /// Clears the bar.
+    pub fn finish(&self) {
+        if let Some(bar) = &self.bar {
+            bar.finish_and_clear();
+        }
+    }
+}
