@@ -16,20 +16,25 @@ fn json_of(o: &std::process::Output) -> Value {
     })
 }
 
+/// `solsim regress DIR --json`, which must exit `code`.
+fn regress_json(dir: &std::path::Path, code: i32) -> Value {
+    let o = solsim()
+        .arg("regress")
+        .arg(dir)
+        .arg("--json")
+        .output()
+        .expect("runs");
+    assert_eq!(o.status.code(), Some(code), "{}", stderr(&o));
+    json_of(&o)
+}
+
 #[test]
 fn regress_json_lists_each_case_and_keeps_the_exit_code() {
     let dir = tempfile::tempdir().expect("tempdir");
     let text =
         rebase(&std::fs::read_to_string(root().join("scenarios/sol717-719.toml")).expect("read"));
     std::fs::write(dir.path().join("a.toml"), &text).expect("write");
-    let o = solsim()
-        .arg("regress")
-        .arg(dir.path())
-        .arg("--json")
-        .output()
-        .expect("runs");
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    let v = json_of(&o);
+    let v = regress_json(dir.path(), 0);
     assert_eq!(v["passed"], 3);
     assert_eq!(v["failed"], 0);
     let cases = v["cases"].as_array().expect("cases");
@@ -46,14 +51,7 @@ fn regress_json_lists_each_case_and_keeps_the_exit_code() {
     );
     assert_ne!(broken, text);
     std::fs::write(dir.path().join("a.toml"), broken).expect("write");
-    let o = solsim()
-        .arg("regress")
-        .arg(dir.path())
-        .arg("--json")
-        .output()
-        .expect("runs");
-    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
-    let v = json_of(&o);
+    let v = regress_json(dir.path(), 1);
     assert_eq!(v["failed"], 1);
     let failed: Vec<&Value> = v["cases"]
         .as_array()

@@ -30,25 +30,6 @@ fn schema(format: &str, dir: &Path) -> PathBuf {
     path
 }
 
-/// The venv's Python, or `None` (with the skip said on stderr) when there is none outside CI.
-fn python() -> Option<PathBuf> {
-    let python = root().join("peers/.venv/bin/python");
-    if python.exists() {
-        return Some(python);
-    }
-    assert!(
-        std::env::var_os("CI").is_none(),
-        "CI is set but {} does not exist: .ci/run creates it",
-        python.display()
-    );
-    eprintln!(
-        "SKIPPED the jsonschema check of the file formats: {} absent (python3 \
-         peers/schema_check.py creates it)",
-        python.display()
-    );
-    None
-}
-
 /// `(file, valid, errors)` per file, from `peers/schema_check.py`.
 fn check(python: &Path, schema: &Path, files: &[PathBuf]) -> Vec<(String, bool, Vec<String>)> {
     let o = std::process::Command::new(python)
@@ -125,7 +106,9 @@ fn every_bundled_file_validates_and_broken_ones_do_not() {
         common::assert_bad_input(&o, &[name]);
         broken_files.push(path);
     }
-    let Some(python) = python() else { return };
+    let Some(python) = common::peers_python("the jsonschema check of the file formats") else {
+        return;
+    };
 
     for (file, valid, errors) in check(&python, &scenario_schema, &scenarios) {
         assert!(valid, "{file}: {errors:?}");

@@ -135,24 +135,10 @@ fn the_documented_tables_equal_the_schema_file() {
 
 /// The venv's Python, or `None` (with the skip said on stderr) when there is none outside CI.
 fn python() -> Option<PathBuf> {
-    let python = root().join("peers/.venv/bin/python");
-    if python.exists() {
-        return Some(python);
-    }
-    assert!(
-        std::env::var_os("CI").is_none(),
-        "CI is set but {} does not exist: CI must create it (python3 -m venv peers/.venv && \
-         peers/.venv/bin/pip install -r peers/requirements.txt) and run the pyarrow check, not \
-         skip it",
-        python.display()
-    );
-    eprintln!(
-        "SKIPPED the pyarrow check of the sweep files: {} absent (python3 -m venv peers/.venv && \
-         peers/.venv/bin/pip install -r peers/requirements.txt creates it); only the Rust schema \
-         was compared with tests/sweep_schema.json",
-        python.display()
-    );
-    None
+    common::peers_python(
+        "the pyarrow check of the sweep files (only the Rust schema was compared with \
+         tests/sweep_schema.json)",
+    )
 }
 
 /// `peers/sweep_schema_check.py DIR --schema SCHEMA`.

@@ -127,3 +127,26 @@ pub fn manifest(out: &std::path::Path) -> serde_json::Value {
     serde_json::from_slice(&std::fs::read(out.join("manifest.json")).expect("manifest"))
         .expect("json")
 }
+
+/// `peers/.venv`'s Python, or `None` when it does not exist, with `skipped` (what is not
+/// checked without it) said on stderr. Under `CI` its absence fails the test: `.ci/run`
+/// creates the venv (python3 -m venv peers/.venv && peers/.venv/bin/pip install -r
+/// peers/requirements.txt).
+pub fn peers_python(skipped: &str) -> Option<PathBuf> {
+    let python = root().join("peers/.venv/bin/python");
+    if python.exists() {
+        return Some(python);
+    }
+    assert!(
+        std::env::var_os("CI").is_none(),
+        "CI is set but {} does not exist: CI must create it (python3 -m venv peers/.venv && \
+         peers/.venv/bin/pip install -r peers/requirements.txt) and run {skipped}, not skip it",
+        python.display()
+    );
+    eprintln!(
+        "SKIPPED {skipped}: {} absent (python3 -m venv peers/.venv && peers/.venv/bin/pip \
+         install -r peers/requirements.txt creates it)",
+        python.display()
+    );
+    None
+}
