@@ -25,6 +25,7 @@ pub mod cmd_plan;
 pub mod cmd_sweep;
 pub mod cmd_validate;
 pub mod cmd_zones;
+pub mod figures;
 pub mod output_set;
 pub mod progress;
 pub mod regress;

@@ -519,15 +519,22 @@ fn compare(
             )?;
         }
     }
-    let extra: Vec<(String, String)> = summary
-        .iter()
-        .map(|s| {
-            (
-                format!("{}.over-runs.json", scenario.name),
-                report_runs::summary_json(s),
-            )
-        })
-        .collect();
+    let mut extra: Vec<(String, String)> = Vec::new();
+    if !a.output.no_files {
+        extra.push((
+            format!("{}.uncertainty.svg", scenario.name),
+            solsim::figures::uncertainty_by_sol_svg(
+                &format!("{}: uncertainty radius r per sol", scenario.name),
+                &outcomes,
+            )?,
+        ));
+    }
+    extra.extend(summary.iter().map(|s| {
+        (
+            format!("{}.over-runs.json", scenario.name),
+            report_runs::summary_json(s),
+        )
+    }));
     write_files(&a.output, &scenario, &outcomes, legs, &extra, stdout)?;
     Ok(ExitCode::SUCCESS)
 }
