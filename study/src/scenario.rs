@@ -1210,15 +1210,6 @@ impl Scenario {
         s
     }
 
-    /// The same scenario with `[operations] preemptive_shortening` set: what a statistical
-    /// `[[expect]]` with `preemptive_shortening = false` runs.
-    #[must_use]
-    pub fn with_preemptive_shortening(&self, on: bool) -> Scenario {
-        let mut s = self.clone();
-        s.campaign.rules.preemptive_shortening = on;
-        s
-    }
-
     /// The strategies that make sense for this scenario (`replay` only with historic data).
     #[must_use]
     pub fn strategies(&self) -> Vec<sim::Strategy> {

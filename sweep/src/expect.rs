@@ -44,14 +44,21 @@ pub fn check_statistical(scenario: &Scenario) -> Vec<StatResult> {
         .into_iter()
         .map(|((runs, errors, shortening), mut strategies)| {
             strategies.sort_by_key(|s| s.stream_id());
-            let mut sc = scenario.clone();
-            if let Some(p) = errors.and_then(ErrorPreset::from_name) {
-                sc = sc.with_errors(p.model());
-            }
-            if let Some(on) = shortening {
-                sc = sc.with_preemptive_shortening(on);
-            }
-            let sc = &sc;
+            // One copy of the scenario, and only when an override needs it.
+            let owned;
+            let sc = if errors.is_none() && shortening.is_none() {
+                scenario
+            } else {
+                let mut s = scenario.clone();
+                if let Some(p) = errors.and_then(ErrorPreset::from_name) {
+                    s.campaign.rover.errors = p.model();
+                }
+                if let Some(on) = shortening {
+                    s.campaign.rules.preemptive_shortening = on;
+                }
+                owned = s;
+                &owned
+            };
             let start = std::time::Instant::now();
             let spec = SweepSpec {
                 strategies,
