@@ -1,10 +1,10 @@
 //! `solsim map generate RECIPE --out DIR`: a procedural map from a recipe file.
 //!
 //! A recipe is a TOML file holding a `[terrain]` table with the fields of
-//! [`maps::procedural::TerrainParams`] (seed, size, georeference, craters, ridges, dune fields,
-//! sand patches, sun) and an optional `dem_datum_m`. The bundled scenario maps each keep their
-//! recipe beside them (`maps/assets/<map>/recipe.toml`), so `solsim map generate` rebuilds them
-//! byte for byte.
+//! [`maps::procedural::TerrainParams`] (seed, size, placement, craters, ridges, dune fields,
+//! sand patches, sun), an optional `dem_datum_m` and an optional `[georeference]` (where the map
+//! lies on Mars: see [`study::recipe`]). The bundled scenario maps each keep their recipe beside
+//! them (`maps/assets/<map>/recipe.toml`), so `solsim map generate` rebuilds them byte for byte.
 
 use std::path::PathBuf;
 
@@ -28,10 +28,11 @@ pub fn generate(
     budget: maps::MemoryBudget,
     out: &mut dyn std::io::Write,
 ) -> anyhow::Result<()> {
-    let (params, datum_m) = load_recipe(&args.recipe, budget)?;
-    let layers = procedural::generate(&params);
+    let recipe = load_recipe(&args.recipe, budget)?;
+    let params = &recipe.terrain;
+    let layers = procedural::generate(params);
     layers
-        .write_dir(&args.out, datum_m)
+        .write_dir(&args.out, recipe.dem_datum_m, &recipe.crs)
         .with_context(|| format!("{}: cannot write the map", args.out.display()))?;
     let (x0, y0, x1, y1) = layers.dem.extent_m();
     writeln!(
@@ -43,5 +44,14 @@ pub fn generate(
         params.geo.resolution_m_per_px,
         params.seed
     )?;
+    if let maps::MapCrs::Mars(crs) = recipe.crs {
+        let [lon0, lat0] = crs.lonlat_from_map([x0, y0]);
+        let [lon1, lat1] = crs.lonlat_from_map([x1, y1]);
+        writeln!(
+            out,
+            "CRS: {} (lon {lon0:.5}..{lon1:.5}° E, lat {lat0:.5}..{lat1:.5}° N)",
+            crs.name()
+        )?;
+    }
     Ok(())
 }

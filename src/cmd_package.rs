@@ -39,9 +39,15 @@
 //!   (a rendered 0 inside is stored as 1);
 //! - `dem_cm_rRR_cCCC.png`: 16-bit gray, 1 m pixels, centimetres above `datum_m`, 0 = outside
 //!   (a height exactly at the datum is stored as 1 cm);
+//! - beside each PNG, its georeference for GDAL and QGIS (ground-side aids, not part of the
+//!   uplinked bytes in `png_bytes`): `<name>.pgw`, a world file placing its pixels in map
+//!   metres ([`maps::raster_io::world_file`]), and `<name>.png.aux.xml`, a GDAL PAM file naming
+//!   the map's Mars CRS ([`maps::raster_io::pam_aux_xml`]; a map without one is placed at
+//!   [`maps::mars_crs::DEFAULT_ANCHOR`]), so `gdalinfo` reports each tile's CRS and extent;
 //! - `manifest.json`: georeference (map metres, x east, y north; each tile's north-west
-//!   corner), corridor, route, datum, sizes, pixel counts and the MD5 of every PNG, and the
-//!   render seeds and parameters.
+//!   corner; the CRS those metres are projected coordinates of, and the bounding box in Mars
+//!   longitude/latitude), corridor, route, datum, sizes, pixel counts and the MD5 of every PNG,
+//!   and the render seeds and parameters.
 //!
 //! The package is an [`OutputSet`]: written into a staging directory and swapped into place
 //! whole, so DIR holds an earlier package or this one, never a mix, and no tile of an earlier
@@ -62,7 +68,7 @@ use maps::package::{
     BlockRequest, CorridorLayout, PACKAGE_DEM_RESOLUTION_M, RENDER_RESOLUTION_M, TileSpec,
 };
 use maps::procedural::noise::hash2;
-use maps::raster_io::encode_png;
+use maps::raster_io::{encode_png, pam_aux_xml, world_file};
 use maps::{GeoTransform, MapLayers, Raster};
 use sim::seeds::{Purpose, stream_seed};
 
@@ -82,7 +88,8 @@ pub const MANIFEST_FILE: &str = "manifest.json";
 pub struct PackageArgs {
     /// Scenario file (TOML): its map and its route.
     pub scenario: PathBuf,
-    /// Output directory for the tiles (PNG) and manifest.json.
+    /// Output directory for the tiles (PNG, each with a .pgw world file and a .png.aux.xml
+    /// naming its CRS) and manifest.json.
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
     /// Corridor half-width: pixels farther than this from the route are masked, metres.
@@ -304,6 +311,10 @@ pub struct PackageFile {
     pub bytes: u64,
     /// MD5 of the file, hex.
     pub md5: String,
+    /// Its world file (`.pgw`, map metres), for GDAL and QGIS.
+    pub world_file: String,
+    /// Its GDAL PAM file (`.png.aux.xml`) naming the map's CRS.
+    pub aux_file: String,
 }
 
 /// One tile of the manifest: its place and its two files.
@@ -329,6 +340,8 @@ pub struct PackageSummary {
     pub tiles: Vec<ManifestTile>,
     /// Size of manifest.json, bytes.
     pub manifest_bytes: u64,
+    /// Size of the world files and PAM files beside the PNGs, bytes.
+    pub sidecar_bytes: u64,
     /// All files, bytes.
     pub total_bytes: u64,
     /// DEM datum, metres.
@@ -354,6 +367,22 @@ fn write_file(
     let len = bytes.len() as u64;
     let md5 = hex(&HbsFile::new(name.clone(), bytes).md5);
     Ok((name, len, md5))
+}
+
+/// The world file and PAM file names of a PNG `name`: `x.png` → `x.pgw`, `x.png.aux.xml`.
+fn sidecar_names(name: &str) -> [String; 2] {
+    let stem = name.strip_suffix(".png").unwrap_or(name);
+    [format!("{stem}.pgw"), format!("{name}.aux.xml")]
+}
+
+/// The corridor's bounding box in Mars longitude/latitude, degrees: `[west, south, east,
+/// north]`, rounded to 1e-9°.
+fn bbox_lonlat_deg(crs: &maps::MarsEquirectangular, layout: &CorridorLayout) -> [f64; 4] {
+    let [ox, oy] = layout.origin_m;
+    let [w, h] = layout.size_m.map(|v| v as f64);
+    let [west, south] = crs.lonlat_from_map([ox, oy - h]);
+    let [east, north] = crs.lonlat_from_map([ox + w, oy]);
+    [west, south, east, north].map(|v| (v * 1e9).round() / 1e9)
 }
 
 /// The datum of the package DEM: a whole metre 2 m below the lowest map height in the
@@ -431,6 +460,9 @@ pub fn run(
     let settings = RenderSettings::for_seed(scenario.campaign.seed);
     let datum_m = datum_for(layers, &layout);
 
+    let crs = scenario.map_crs.mars_or_default();
+    let aux = pam_aux_xml(&crs);
+    let mut sidecar_bytes = 0u64;
     let mut tiles = Vec::new();
     let progress =
         crate::progress::Progress::new(false, "map package", "tiles", layout.tiles.len() as u64);
@@ -446,6 +478,7 @@ pub fn run(
         let dem_bytes = encode_png(&rasters.dem_cm, &dem_path)?;
         let describe =
             |(file, bytes, md5): (String, u64, String), r_geo: GeoTransform, size_px, kept_px| {
+                let [world_file, aux_file] = sidecar_names(&file);
                 PackageFile {
                     file,
                     size_px,
@@ -454,6 +487,8 @@ pub fn run(
                     kept_px,
                     bytes,
                     md5,
+                    world_file,
+                    aux_file,
                 }
             };
         let appearance = describe(
@@ -468,6 +503,16 @@ pub fn run(
             [rasters.dem_cm.width, rasters.dem_cm.height],
             rasters.kept_px[1],
         );
+        for f in [&appearance, &dem] {
+            let geo = GeoTransform::new(f.origin_m[0], f.origin_m[1], f.resolution_m);
+            for (name, text) in [
+                (&f.world_file, world_file(&geo)),
+                (&f.aux_file, aux.clone()),
+            ] {
+                set.write(name, text.as_bytes())?;
+                sidecar_bytes += text.len() as u64;
+            }
+        }
         tiles.push(ManifestTile {
             spec: *tile,
             appearance,
@@ -497,6 +542,12 @@ pub fn run(
             "lattice_origin_m": layers.dem.geo.origin_m,
             "bbox_origin_m": layout.origin_m,
             "bbox_size_m": layout.size_m,
+            "crs": crs.name(),
+            "crs_wkt2": crs.wkt2(),
+            "crs_from_map": scenario.map_crs.is_mars(),
+            "bbox_lonlat_deg": bbox_lonlat_deg(&crs, &layout),
+            "sidecars": "each PNG has <name>.pgw (world file: pixel size and the centre of its \
+                         top-left pixel, map metres) and <name>.png.aux.xml (its CRS, GDAL PAM)",
         },
         "corridor": {
             "half_width_m": layout.half_width_m,
@@ -532,7 +583,8 @@ pub fn run(
         corridor_km2,
         kept_px,
         manifest_bytes: text.len() as u64,
-        total_bytes: png_bytes + text.len() as u64,
+        sidecar_bytes,
+        total_bytes: png_bytes + sidecar_bytes + text.len() as u64,
         tiles,
         datum_m,
         seconds: start.elapsed().as_secs_f64(),
@@ -583,6 +635,12 @@ pub fn summary_text(name: &str, dir: &Path, layout: &CorridorLayout, s: &Package
             );
         }
     }
+    let _ = writeln!(
+        t,
+        "  {:<28} {:>10} B  (.pgw world file and .png.aux.xml CRS beside each PNG)",
+        format!("{} georeference files", 4 * s.tiles.len()),
+        s.sidecar_bytes
+    );
     let _ = writeln!(t, "  {MANIFEST_FILE:<28} {:>10} B", s.manifest_bytes);
     let app: u64 = s.tiles.iter().map(|f| f.appearance.bytes).sum();
     let dem: u64 = s.tiles.iter().map(|f| f.dem.bytes).sum();
@@ -598,7 +656,7 @@ pub fn summary_text(name: &str, dir: &Path, layout: &CorridorLayout, s: &Package
         "total: {} B = {:.3} MB (10^6 B) in {} files; {:.1} s",
         s.total_bytes,
         s.total_bytes as f64 / 1e6,
-        2 * s.tiles.len() + 1,
+        6 * s.tiles.len() + 1,
         s.seconds
     );
     t

@@ -10,6 +10,8 @@
 //!   submit scripts (the engine is the [`sweep`] crate).
 //! - [`regress`]: runs every scenario's `[[expect]]` entries; text and JUnit reports.
 //! - [`report`]: JSON, per-sol CSV, GeoJSON outputs and terminal tables.
+//! - [`report_gis`]: the GIS layers of a run (route, zones, paths, sol-end ellipses, faults,
+//!   zones at each fault) in Mars longitude/latitude and in the map's projected CRS.
 //! - [`report_runs`]: `compare --runs N`, each strategy against ground over N seeded runs with
 //!   intervals (the statistics of the [`sweep`] crate).
 //! - [`output_set`]: output directories replaced whole ([`output_set::OutputSet`]), never a
@@ -22,6 +24,7 @@ pub mod cmd_localize_rasters;
 pub mod cmd_map;
 pub mod cmd_package;
 pub mod cmd_plan;
+pub mod cmd_report;
 pub mod cmd_sweep;
 pub mod cmd_validate;
 pub mod cmd_zones;
@@ -30,4 +33,6 @@ pub mod output_set;
 pub mod progress;
 pub mod regress;
 pub mod report;
+pub mod report_gis;
+pub mod report_html;
 pub mod report_runs;

@@ -64,6 +64,19 @@ enum Command {
     /// [0.0, 1.9]). Intervals narrow as 1/√N. The output does not depend on --threads; the
     /// summary also goes to --out as <scenario>.over-runs.json.
     Compare(CompareArgs),
+    /// Write report.html for a compare output directory or a sweep directory: one
+    /// self-contained page (figures as inline SVG, no script, nothing from the network).
+    ///
+    /// For a compare directory: the scenario and provenance, the compare table, the verdict
+    /// against ground (and the statistics over runs when compare ran with --runs), the figures
+    /// (uncertainty radius per sol, metres per sol, each strategy's map with keep-outs grown
+    /// at its fault's r, and its sol plans as a Gantt chart with the HBS chain) and every
+    /// strategy's sol log. The scenario is loaded and run again on the run's seed; the report
+    /// is refused unless that gives back every JSON file in the directory. For a sweep
+    /// directory: rates with 95 % Wilson intervals, spreads, paired differences, the CDF of
+    /// sols to cover the study segment (or to reach the goal) and the rates figure.
+    /// `compare --report` writes the same page beside the run's files.
+    Report(solsim::cmd_report::ReportArgs),
     /// Run a scenario under one strategy and print the sol-by-sol table (or JSON).
     Run(RunArgs),
     /// Replay the historic record of a scenario (same as `run --strategy replay`).
@@ -197,7 +210,8 @@ struct OutputArgs {
     /// Print JSON on standard output instead of the table.
     #[arg(long)]
     json: bool,
-    /// Directory for the JSON, per-sol CSV and GeoJSON files, replaced whole by each run (it
+    /// Directory for the JSON, per-sol CSV and GeoJSON files (GIS layers in Mars
+    /// longitude/latitude, and in the map's CRS with a .prj), replaced whole by each run (it
     /// must be new, empty, or an earlier solsim output) [default: solsim-out/<scenario name>]
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
@@ -218,6 +232,14 @@ struct CompareArgs {
     /// Worker threads [default: one per core]. The output does not depend on it.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=1024))]
     threads: Option<u64>,
+    /// Also write report.html (figures inline, the tables, the sol logs) beside the run's
+    /// files; `solsim report DIR` writes it later from the directory.
+    #[arg(long, conflicts_with = "no_files")]
+    report: bool,
+    /// Grow the keep-outs on the map figures by this uncertainty r, metres [default: each
+    /// strategy's r at its first fault, else its largest end-of-sol r].
+    #[arg(long, value_name = "R")]
+    map_r_m: Option<f64>,
     #[command(flatten)]
     output: OutputArgs,
 }
@@ -326,6 +348,10 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
     let budget = MemoryBudget::new(cli.memory_budget_mib << 20);
     match cli.command {
         Command::Compare(a) => compare(&a, budget, stdout),
+        Command::Report(a) => {
+            solsim::cmd_report::run(&a, budget, stdout)?;
+            Ok(ExitCode::SUCCESS)
+        }
         Command::Run(a) => run_one(&a.scenario, &a.strategy, &a.output, budget, stdout),
         Command::Replay(a) => run_one(&a.scenario, "replay", &a.output, budget, stdout),
         Command::Regress(a) => {
@@ -455,6 +481,7 @@ fn compare(
     if let Some(runs) = a.runs {
         sweep::engine::check_runs(runs, report_runs::MIN_RUNS)?;
     }
+    solsim::cmd_report::check_map_r(a.map_r_m)?;
     let scenario = Scenario::load_within(&a.scenario, budget)?;
     let spec = match a.runs {
         None => None,
@@ -521,13 +548,15 @@ fn compare(
     }
     let mut extra: Vec<(String, String)> = Vec::new();
     if !a.output.no_files {
-        extra.push((
-            format!("{}.uncertainty.svg", scenario.name),
-            solsim::figures::uncertainty_by_sol_svg(
-                &format!("{}: uncertainty radius r per sol", scenario.name),
-                &outcomes,
-            )?,
-        ));
+        for (name, _, svg) in solsim::report_html::run_figures(&scenario, &outcomes, a.map_r_m)? {
+            extra.push((name, svg));
+        }
+        if a.report {
+            extra.push((
+                "report.html".into(),
+                solsim::report_html::run_report(&scenario, &outcomes, summary.as_ref(), a.map_r_m)?,
+            ));
+        }
     }
     extra.extend(summary.iter().map(|s| {
         (
@@ -607,7 +636,7 @@ fn write_files(
     // The whole set is written aside and swapped into place: a kill leaves the earlier
     // run's files or these, never a mix.
     let set = OutputSet::begin(&dir)?;
-    let mut written = Vec::new();
+    let mut written = report::write_scenario_files(&set, scenario)?;
     for o in outcomes {
         written.extend(report::write_run_files(&set, scenario, o, legs)?);
     }
@@ -616,21 +645,21 @@ fn write_files(
     }
     set.commit()?;
     if !output.json {
-        let also = if extra.is_empty() {
-            String::new()
-        } else {
-            format!(
-                "; {}",
-                extra
-                    .iter()
-                    .map(|(n, _)| n.as_str())
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            )
-        };
+        let count = |suffix: &str| extra.iter().filter(|(n, _)| n.ends_with(suffix)).count();
+        let mut also = String::new();
+        if count(".svg") > 0 {
+            also.push_str(&format!("; {} SVG figures", count(".svg")));
+        }
+        if count("over-runs.json") > 0 {
+            also.push_str(&format!("; {}.over-runs.json", scenario.name));
+        }
+        if count("report.html") > 0 {
+            also.push_str("; report.html");
+        }
         writeln!(
             stdout,
-            "\nwrote {} files to {}/ (JSON, per-sol CSV, GeoJSON per strategy{also})",
+            "\nwrote {} files to {}/ (per strategy JSON, per-sol CSV and paths GeoJSON in Mars \
+             lon/lat; more GIS layers in gis/, in the map's CRS in gis/projected/{also})",
             written.len(),
             dir.display()
         )?;

@@ -100,12 +100,28 @@ impl OutputSet {
         Ok(set)
     }
 
-    /// Writes `name` (a plain file name) into the set.
+    /// Writes `name` into the set: a file name, or a relative path such as `gis/a.geojson`
+    /// whose folders are made as needed.
     ///
     /// # Errors
     /// [`OutputSetError::Io`].
+    ///
+    /// # Panics
+    /// If `name` is absolute or climbs out of the set (`..`): names are the program's own.
     pub fn write(&self, name: &str, bytes: &[u8]) -> Result<PathBuf, OutputSetError> {
-        let path = self.staging.join(name);
+        let relative = Path::new(name);
+        assert!(
+            relative
+                .components()
+                .all(|c| matches!(c, std::path::Component::Normal(_))),
+            "output name {name:?} must be a relative path inside the set"
+        );
+        let path = self.staging.join(relative);
+        if let Some(folder) = path.parent()
+            && folder != self.staging
+        {
+            fs::create_dir_all(folder).map_err(io(folder))?;
+        }
         let mut f = fs::File::create(&path).map_err(io(&path))?;
         f.write_all(bytes).map_err(io(&path))?;
         f.sync_all().map_err(io(&path))?;

@@ -1,4 +1,5 @@
-//! Output files and tables: JSON, per-sol CSV, GeoJSON for MMGIS/QGIS, and the terminal tables.
+//! Output files and tables: JSON, per-sol CSV, GeoJSON for MMGIS/QGIS (the layers are
+//! [`crate::report_gis`]), and the terminal tables.
 //!
 //! Every file is written atomically (a temporary file in the same folder, then a rename), so a
 //! crash or a full disk never leaves half an output behind.
@@ -133,55 +134,24 @@ fn csv_quote(s: &str) -> String {
     }
 }
 
-/// GeoJSON of one run: the driven path per sol (LineString, estimated positions) and the sol-end
-/// positions (Point) with the uncertainty as MMGIS-style ellipse properties
-/// (`uncertainty_semi_major_m`, `uncertainty_semi_minor_m`, `uncertainty_angle_deg`; a disc, so
-/// both axes equal the radius and the angle is 0).
+/// GeoJSON of one run in Mars longitude/latitude (the `<scenario>.<strategy>.geojson` file,
+/// see [`crate::report_gis::paths_layer`]): the driven path per sol (LineString, estimated
+/// positions) and the sol-end positions (Point) with the uncertainty as MMGIS-style ellipse
+/// properties (`uncertainty_semi_major_m`, `uncertainty_semi_minor_m`, `uncertainty_angle_deg`;
+/// a disc, so both axes equal the radius and the angle is 0); map metres in the properties.
 #[must_use]
 pub fn run_geojson(scenario: &Scenario, outcome: &CampaignOutcome) -> Value {
-    let mut features = Vec::new();
-    for r in &outcome.sols {
-        if r.path_m.len() >= 2 {
-            features.push(json!({
-                "type": "Feature",
-                "geometry": { "type": "LineString", "coordinates": r.path_m },
-                "properties": {
-                    "kind": "drive",
-                    "strategy": outcome.strategy,
-                    "sol": r.sol,
-                    "distance_m": r.distance_m,
-                    "fault": r.fault.as_ref().map(|f| f.kind.name()),
-                },
-            }));
-        }
-        if r.drove {
-            features.push(json!({
-                "type": "Feature",
-                "geometry": { "type": "Point", "coordinates": r.path_m.last().copied().unwrap_or(r.end_position_m) },
-                "properties": {
-                    "kind": "sol_end",
-                    "strategy": outcome.strategy,
-                    "sol": r.sol,
-                    "uncertainty_m": r.end_uncertainty_m,
-                    "uncertainty_semi_major_m": r.end_uncertainty_m,
-                    "uncertainty_semi_minor_m": r.end_uncertainty_m,
-                    "uncertainty_angle_deg": 0.0,
-                    "true_x_m": r.end_true_position_m[0],
-                    "true_y_m": r.end_true_position_m[1],
-                    "fault": r.fault.as_ref().map(|f| f.kind.name()),
-                },
-            }));
-        }
-    }
-    json!({
-        "type": "FeatureCollection",
-        "name": format!("{}.{}", scenario.name, outcome.strategy),
-        "crs_note": "map metres: x easting, y northing, same frame as the scenario's zones",
-        "features": features,
-    })
+    let crs = scenario.map_crs.mars_or_default();
+    let text = crate::report_gis::paths_layer(scenario, outcome).geojson(
+        &crs,
+        crate::report_gis::Frame::LonLat,
+        "",
+    );
+    serde_json::from_str(&text).unwrap_or(Value::Null)
 }
 
-/// Write the JSON, CSV and GeoJSON of one run into `dir`; returns the paths written.
+/// Write the JSON and CSV of one run and its GIS layers ([`crate::report_gis::run_layers`],
+/// each in longitude/latitude and in the map's CRS) into `set`; returns the paths written.
 pub fn write_run_files(
     set: &OutputSet,
     scenario: &Scenario,
@@ -189,20 +159,31 @@ pub fn write_run_files(
     legs: &[LegClearance],
 ) -> Result<Vec<PathBuf>, OutputSetError> {
     let stem = format!("{}.{}", scenario.name, outcome.strategy);
-    [
+    let mut written = [
         (
             format!("{stem}.json"),
             pretty(&run_json(scenario, outcome, legs)),
         ),
         (format!("{stem}.sols.csv"), sols_csv(outcome)),
-        (
-            format!("{stem}.geojson"),
-            pretty(&run_geojson(scenario, outcome)),
-        ),
     ]
     .iter()
     .map(|(name, text)| set.write(name, text.as_bytes()))
-    .collect()
+    .collect::<Result<Vec<_>, _>>()?;
+    written.extend(crate::report_gis::write_layers(
+        set,
+        scenario,
+        &crate::report_gis::run_layers(scenario, outcome),
+    )?);
+    Ok(written)
+}
+
+/// Write the GIS layers every strategy shares — the route and the zones as given
+/// ([`crate::report_gis::scenario_layers`]) — into `set`; returns the paths written.
+pub fn write_scenario_files(
+    set: &OutputSet,
+    scenario: &Scenario,
+) -> Result<Vec<PathBuf>, OutputSetError> {
+    crate::report_gis::write_layers(set, scenario, &crate::report_gis::scenario_layers(scenario))
 }
 
 /// Pretty JSON with a trailing newline.

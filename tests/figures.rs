@@ -1,18 +1,26 @@
-//! Figures (issue 13, item 1, first part): `solsim compare` writes
+//! Figures (issue 13, item 1): `solsim compare` writes beside its other files
 //! `<scenario>.uncertainty.svg`, the uncertainty radius against sol per strategy (paper 000
-//! Fig. 2 and 5), beside its other files. The SVG is well-formed XML (Python's
-//! `xml.etree.ElementTree` parses it), names every strategy, draws one line each and marks
-//! faults, and is the same byte for byte on a second run.
+//! Fig. 2 and 5), `<scenario>.metres.svg`, metres per sol, and per strategy
+//! `<scenario>.<strategy>.map.svg` (zones, keep-outs grown at the fault's r, route, path,
+//! sol-end discs, faults; Fig. 3-4) and `<scenario>.<strategy>.plans.svg` (each sol's plan as a
+//! Gantt chart with the HBS chain). Every SVG is well-formed XML (Python's
+//! `xml.etree.ElementTree` parses it), shows what it claims from the run's own JSON, and is
+//! the same byte for byte on a second run.
 
 mod common;
 
 use common::{root, solsim, stderr};
 
 fn compare_svg(scenario: &str, out: &std::path::Path) -> String {
+    compare_svg_with(scenario, out, &[])
+}
+
+fn compare_svg_with(scenario: &str, out: &std::path::Path, extra: &[&str]) -> String {
     let o = solsim()
         .current_dir(root())
         .args(["compare", scenario, "--out"])
         .arg(out)
+        .args(extra)
         .output()
         .expect("runs");
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
@@ -21,10 +29,7 @@ fn compare_svg(scenario: &str, out: &std::path::Path) -> String {
         .and_then(|s| s.to_str())
         .expect("name");
     let stdout = String::from_utf8_lossy(&o.stdout);
-    assert!(
-        stdout.contains(&format!("{name}.uncertainty.svg")),
-        "{stdout}"
-    );
+    assert!(stdout.contains("SVG figures"), "{stdout}");
     std::fs::read_to_string(out.join(format!("{name}.uncertainty.svg"))).expect("the figure")
 }
 
@@ -79,4 +84,161 @@ fn compare_writes_the_uncertainty_figure() {
     // Deterministic.
     let again = compare_svg("scenarios/sol383-386.toml", &dir.path().join("b"));
     assert_eq!(svg, again);
+}
+
+/// Parses every `*.svg` in `dir` with Python's ElementTree; returns their names.
+fn all_svgs_parse(dir: &std::path::Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .expect("list")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".svg"))
+        .collect();
+    names.sort();
+    for n in &names {
+        let parsed = std::process::Command::new("python3")
+            .args([
+                "-c",
+                "import sys, xml.etree.ElementTree as E; E.parse(sys.argv[1])",
+            ])
+            .arg(dir.join(n))
+            .output()
+            .expect("python3 runs");
+        assert!(parsed.status.success(), "{n}: {}", stderr(&parsed));
+    }
+    names
+}
+
+fn run_doc(dir: &std::path::Path, name: &str) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(dir.join(name)).expect("run JSON")).expect("JSON")
+}
+
+#[test]
+fn compare_writes_maps_metres_and_plan_figures_from_the_run() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("a");
+    compare_svg("scenarios/sol383-386.toml", &out);
+    let names = all_svgs_parse(&out);
+    for strategy in [
+        "replay",
+        "ground",
+        "onboard",
+        "extension",
+        "extension+onboard",
+    ] {
+        for kind in ["map", "plans"] {
+            let n = format!("sol383-386.{strategy}.{kind}.svg");
+            assert!(names.contains(&n), "{n} in {names:?}");
+        }
+    }
+    assert!(names.contains(&"sol383-386.metres.svg".to_string()));
+    let read = |n: &str| std::fs::read_to_string(out.join(n)).expect("figure");
+    let text = |svg: &str, t: &str| svg.contains(&format!("\n{t}\n</text>"));
+
+    // The replay's map grows the keep-outs by its fault's r (from its JSON) plus the footprint,
+    // and marks the NO_PATH on sol 385.
+    let replay = run_doc(&out, "sol383-386.replay.json");
+    let fault = replay["sols"]
+        .as_array()
+        .expect("sols")
+        .iter()
+        .find_map(|s| s["fault"].as_object().cloned())
+        .expect("the replay faults");
+    let r = fault["uncertainty_m"].as_f64().expect("r");
+    let map = read("sol383-386.replay.map.svg");
+    assert!(
+        map.contains(&format!("keep-outs grown by r = {r:.1} m")),
+        "title names the fault's r {r:.1}"
+    );
+    assert!(text(&map, "NO_PATH sol 385"), "the fault is labelled");
+    for legend in ["keep-out", "route and waypoints", "fault"] {
+        assert!(text(&map, legend), "legend {legend}");
+    }
+    // Each drive sol's end is labelled with its sol.
+    for s in replay["sols"].as_array().expect("sols") {
+        if s["drove"].as_bool() == Some(true) {
+            let sol = s["sol"].as_u64().expect("sol");
+            assert!(
+                text(&map, &sol.to_string()),
+                "sol {sol} labelled on the map"
+            );
+        }
+    }
+    // Ground never faults here: no fault in its legend, r is its largest end-of-sol r.
+    let ground_map = read("sol383-386.ground.map.svg");
+    assert!(!text(&ground_map, "fault"), "no fault legend for ground");
+    let ground = run_doc(&out, "sol383-386.ground.json");
+    let max_r = ground["sols"]
+        .as_array()
+        .expect("sols")
+        .iter()
+        .filter_map(|s| s["end_uncertainty_m"].as_f64())
+        .fold(0.0, f64::max);
+    assert!(
+        ground_map.contains(&format!("r = {max_r:.1} m")),
+        "largest r {max_r:.1}"
+    );
+
+    // The onboard plans: a row per planned sol and an HBS row under each sol that ran the
+    // co-processor chain.
+    let onboard = run_doc(&out, "sol383-386.onboard.json");
+    let plans = read("sol383-386.onboard.plans.svg");
+    for s in onboard["sols"].as_array().expect("sols") {
+        let Some(plan) = s["activity_plan"].as_object() else {
+            continue;
+        };
+        let sol = s["sol"].as_u64().expect("sol");
+        let rows = plan["timeline"].as_array().expect("timeline");
+        if rows.is_empty() {
+            continue;
+        }
+        assert!(text(&plans, &format!("sol {sol}")), "sol {sol} row");
+        let hbs = rows
+            .iter()
+            .any(|t| t["timeline"].as_str() == Some("hbs_link"));
+        assert_eq!(
+            text(&plans, &format!("{sol} HBS")),
+            hbs,
+            "sol {sol} HBS row"
+        );
+    }
+    assert!(text(&plans, "HBS co-processor chain") && text(&plans, "drive"));
+
+    // Metres per sol: one bar per drive sol per strategy (plotters draws each as a <rect> in
+    // the strategy's colour; ground is the second colour, #1F77B4).
+    let metres = read("sol383-386.metres.svg");
+    let ground_drives = ground["sols"]
+        .as_array()
+        .expect("sols")
+        .iter()
+        .filter(|s| s["drove"].as_bool() == Some(true))
+        .count();
+    let ground_rects = metres
+        .split("<rect")
+        .skip(1)
+        .filter(|r| {
+            r.split("/>")
+                .next()
+                .is_some_and(|a| a.contains("fill=\"#1F77B4\""))
+        })
+        .count();
+    // The drive sols' bars and the legend swatch.
+    assert_eq!(ground_rects, ground_drives + 1, "ground bars");
+}
+
+#[test]
+fn the_map_grows_the_keep_outs_at_the_asked_r() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("a");
+    compare_svg_with("scenarios/sol383-386.toml", &out, &["--map-r-m", "10"]);
+    let map = std::fs::read_to_string(out.join("sol383-386.onboard.map.svg")).expect("map");
+    assert!(map.contains("keep-outs grown by r = 10.0 m"), "asked r");
+    for bad in ["-1", "nan", "1e9"] {
+        let o = solsim()
+            .current_dir(root())
+            .args(["compare", "scenarios/sol383-386.toml", "--no-files"])
+            .arg(format!("--map-r-m={bad}"))
+            .output()
+            .expect("runs");
+        common::assert_bad_input(&o, &["--map-r-m", "metres"]);
+    }
 }

@@ -320,12 +320,13 @@ fn fuzz_parsers() {
         time_limit: TEXT_TIME_LIMIT,
         memory_limit_bytes: TEXT_MEMORY_LIMIT,
         run: Box::new(|input| {
-            let (params, _datum_m) = study::recipe::recipe_from_toml_str(
+            let params = study::recipe::recipe_from_toml_str(
                 &recipe_path,
                 &text(input),
                 MemoryBudget::default(),
             )
-            .map_err(|e| scenario_kind(&e))?;
+            .map_err(|e| scenario_kind(&e))?
+            .terrain;
             let area_km2 = params.width_px as f64
                 * params.height_px as f64
                 * params.geo.resolution_m_per_px.powi(2)

@@ -6,6 +6,9 @@
 //! - [`raster_io`]: PNG and GeoTIFF readers and writers (appearance u8, DEM as 16-bit cm or f32 m,
 //!   terrain class u8) and [`MapLayers`], the three layers of one map.
 //! - [`input_file`]: reading inputs safely (regular files only, a size cap).
+//! - [`mars_crs`]: where a map lies on Mars ([`MapCrs`], [`MarsEquirectangular`]): the IAU 2015
+//!   Mars sphere in the Jezero equirectangular projection, whose metres are map metres; WKT for
+//!   GDAL and `.prj` files.
 //! - [`memory_budget`]: one memory budget per command ([`MemoryBudget`]), checked from sizes
 //!   and raster headers before allocating.
 //! - [`package`]: onboard map packages: the maps masked to a corridor around the route, PNG.
@@ -27,6 +30,7 @@
 #![warn(missing_docs)]
 
 pub mod input_file;
+pub mod mars_crs;
 pub mod memory_budget;
 pub mod package;
 pub mod procedural;
@@ -35,6 +39,7 @@ pub mod raster_io;
 pub mod terrain;
 pub mod zone;
 
+pub use mars_crs::{MapAnchor, MapCrs, MarsEquirectangular};
 pub use memory_budget::MemoryBudget;
 pub use raster::{GeoTransform, Raster};
 pub use raster_io::{MapLayers, RasterError};

@@ -3,7 +3,8 @@
 //!
 //! - Format follows the extension: `.png`, or `.tif` / `.tiff` (any case); anything else is
 //!   [`RasterError::UnsupportedFormat`].
-//! - PNG carries no georeference, so its readers take a [`GeoTransform`] from the caller.
+//! - PNG carries no georeference, so its readers take a [`GeoTransform`] from the caller;
+//!   [`world_file`] and [`pam_aux_xml`] write the sidecars that place it for GDAL and QGIS.
 //!   GeoTIFF carries one in the standard tags (`ModelPixelScaleTag`, `ModelTiepointTag`,
 //!   `GeoKeyDirectoryTag`); a caller-supplied transform overrides them.
 //! - DEMs are stored as 16-bit unsigned **centimetres above a datum** ([`dem_to_cm`],
@@ -14,25 +15,29 @@
 //! - Bad files never panic: every failure is a [`RasterError`] naming the file.
 
 mod error;
+mod geokeys;
 mod geotiff;
 mod header;
 mod map_layers;
 mod nodata;
 mod png;
+mod sidecar;
 
 use std::fs::{self, File};
 use std::io::{BufWriter, Write};
 use std::path::Path;
 use std::sync::atomic::{AtomicU64, Ordering};
 
+use crate::mars_crs::MapCrs;
 use crate::raster::{GeoTransform, Raster};
 
 pub use error::{DEM_CM_MAX_M, RasterError};
-pub use geotiff::{GeoTiff, read_geotiff, write_geotiff};
+pub use geotiff::{GeoTiff, read_geotiff, write_geotiff, write_geotiff_with_crs};
 pub use header::{RasterHeader, read_header};
 pub use map_layers::MapLayers;
 pub use nodata::{read_dem_with_holes, read_raster_with_nodata};
 pub use png::{encode_png, read_png, write_png};
+pub use sidecar::{pam_aux_xml, world_file};
 
 /// Placeholder path in errors about a raster that has no file yet.
 const IN_MEMORY: &str = "<DEM in memory>";
@@ -187,6 +192,20 @@ pub fn read_raster<T: Sample>(
             })?;
             png::read_png_any::<T>(path, geo)
         }
+    }
+}
+
+/// The [`MapCrs`] of a raster file without decoding its samples: a GeoTIFF's GeoKeys (see
+/// [`read_geotiff`]); a PNG carries none and is [`MapCrs::Local`].
+///
+/// # Errors
+/// [`RasterError::UnsupportedFormat`], [`RasterError::NotAFile`], [`RasterError::Io`] /
+/// [`RasterError::Decode`] for an unreadable file, [`RasterError::BadGeoreference`] for a
+/// malformed GeoKey directory.
+pub fn read_map_crs(path: &Path) -> Result<MapCrs, RasterError> {
+    match Format::of(path)? {
+        Format::GeoTiff => geotiff::read_crs(path),
+        Format::Png => Ok(MapCrs::Local),
     }
 }
 

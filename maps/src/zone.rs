@@ -17,7 +17,8 @@
 //! up to a few ulps: there is no polygonal approximation of the rover's disc. Keep-out edges and
 //! the edge of the keep-in union are held in bounding-volume hierarchies, so a query costs about
 //! `log(edges)` plus the polygons whose box holds the point. [`ZoneSet::rasterize`] marks grid cells
-//! for the simulator.
+//! for the simulator. [`ZoneSet::keep_outs_grown`] and [`ZoneSet::keep_in_shrunk`] give the
+//! grown and shrunk zones as polygons (chords of the exact offsets), for maps and GIS layers.
 //!
 //! ```
 //! use maps::ZoneSet;
@@ -56,6 +57,7 @@
 mod error;
 mod geojson_reader;
 mod geometry;
+mod offset;
 mod polygons;
 mod rasterization;
 mod segment_tree;
@@ -63,6 +65,7 @@ mod union_boundary;
 mod validation;
 
 pub use error::ZoneError;
+pub use offset::{ARC_STEP_RAD, polygon_rings_m};
 
 use crate::raster::GeoTransform;
 use geo::{LineString, MultiPolygon, Polygon};

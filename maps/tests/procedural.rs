@@ -223,7 +223,7 @@ fn written_map_reloads_identically() {
         dune_fields: vec![DuneField::new([2100.0, 6900.0], 60.0, 100.0)],
         ..small(17)
     });
-    m.write_dir(dir.path(), 0.0).unwrap();
+    m.write_dir(dir.path(), 0.0, &maps::MapCrs::Local).unwrap();
     let d = dir.path();
     let back = MapLayers::load(
         &d.join(MapLayers::APPEARANCE_FILE),

@@ -200,6 +200,98 @@ fn corrupt_and_missing_files_are_errors_not_panics() {
     one_line(&e, &missing);
 }
 
+#[test]
+fn geotiff_carries_a_mars_crs_and_reads_local_files_as_local() {
+    use maps::raster_io::{read_map_crs, write_geotiff_with_crs};
+    use maps::{MapAnchor, MapCrs, MarsEquirectangular};
+    let dir = tempfile::tempdir().unwrap();
+    let mars = MarsEquirectangular::jezero(&MapAnchor {
+        anchor_m: [600.0, 600.0],
+        lon_deg: 77.4508,
+        lat_deg: 18.4447,
+    });
+    let r = ramp(9, 7, |i| i as u16);
+    let p = dir.path().join("mars.tif");
+    write_geotiff_with_crs(&p, &r, None, &MapCrs::Mars(mars)).unwrap();
+    let g: GeoTiff<u16> = read_geotiff(&p, None).unwrap();
+    assert_eq!(g.raster, r);
+    assert_eq!(g.crs, MapCrs::Mars(mars));
+    assert_eq!(read_map_crs(&p).unwrap(), MapCrs::Mars(mars));
+    // A caller's georeference overrides the file's tags, CRS included.
+    assert_eq!(
+        read_geotiff::<u16>(&p, Some(geo())).unwrap().crs,
+        MapCrs::Local
+    );
+    // Files in the local frame (all GeoTIFFs before the Mars CRS) read as before.
+    let old = dir.path().join("old.tif");
+    write_geotiff(&old, &r, None).unwrap();
+    let g: GeoTiff<u16> = read_geotiff(&old, None).unwrap();
+    assert_eq!((g.raster, g.crs), (r.clone(), MapCrs::Local));
+    assert_eq!(read_map_crs(&old).unwrap(), MapCrs::Local);
+    assert_eq!(
+        read_map_crs(&dir.path().join("x.png")).unwrap(),
+        MapCrs::Local
+    );
+    // Same raster and CRS, same bytes.
+    let again = dir.path().join("again.tif");
+    write_geotiff_with_crs(&again, &r, None, &MapCrs::Mars(mars)).unwrap();
+    assert_eq!(fs::read(&p).unwrap(), fs::read(&again).unwrap());
+}
+
+#[test]
+fn a_gdal_style_equirectangular_mars_file_is_understood() {
+    // Keys as GDAL writes them for eqc with a latitude of origin of 10° (folded into the false
+    // northing), natural-origin keys instead of centre keys; then a Earth ellipsoid (local).
+    let dir = tempfile::tempdir().unwrap();
+    #[rustfmt::skip]
+    let keys: [u16; 4 + 4 * 9] = [
+        1, 1, 0, 9,
+        1024, 0, 1, 1,
+        2054, 0, 1, 9102,
+        2057, 34736, 1, 0,
+        2058, 34736, 1, 1,
+        3075, 0, 1, 17,
+        3076, 0, 1, 9001,
+        3078, 34736, 1, 2,
+        3080, 34736, 1, 3,
+        3081, 34736, 1, 4,
+    ];
+    let tags = |a: f64| {
+        vec![
+            (Tag::ModelPixelScaleTag, vec![2.0, 2.0, 0.0]),
+            (
+                Tag::ModelTiepointTag,
+                vec![0.0, 0.0, 0.0, 100.0, 200.0, 0.0],
+            ),
+            (Tag::GeoDoubleParamsTag, vec![a, a, 18.4663, 77.0, 10.0]),
+        ]
+    };
+    let p = tmp(&dir, "gdal-mars.tif");
+    tiff_with_tags(&p, &tags(3_396_190.0), Some(&keys), None);
+    let crs = maps::raster_io::read_map_crs(&p).unwrap();
+    let maps::MapCrs::Mars(m) = crs else {
+        panic!("{crs:?}")
+    };
+    assert_eq!(
+        (m.central_meridian_deg, m.true_scale_latitude_deg),
+        (77.0, 18.4663)
+    );
+    assert_eq!(m.false_easting_m, 0.0);
+    let [_, lat] = m.lonlat_from_map([0.0, 0.0]);
+    assert!((lat - 10.0).abs() < 1e-12, "{lat}");
+    let p = tmp(&dir, "gdal-earth.tif");
+    tiff_with_tags(&p, &tags(6_378_137.0), Some(&keys), None);
+    assert_eq!(
+        maps::raster_io::read_map_crs(&p).unwrap(),
+        maps::MapCrs::Local
+    );
+    // Georeference unaffected either way.
+    assert_eq!(
+        read_geotiff::<u16>(&p, None).unwrap().raster.geo,
+        GeoTransform::new(100.0, 200.0, 2.0)
+    );
+}
+
 /// Writes a 4x3 u16 TIFF with arbitrary georeferencing tags, as other tools would.
 fn tiff_with_tags(
     path: &Path,
@@ -513,7 +605,7 @@ fn map_layers_write_dir_and_load_round_trip() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("nested/map");
     let layers = sample_layers();
-    layers.write_dir(&out, 100.0).unwrap();
+    layers.write_dir(&out, 100.0, &maps::MapCrs::Local).unwrap();
     let names: Vec<_> = {
         let mut v: Vec<_> = fs::read_dir(&out)
             .unwrap()
@@ -599,10 +691,12 @@ fn map_layers_reject_mismatched_extents_and_bad_codes() {
         ..layers.clone()
     };
     assert!(matches!(
-        bad.write_dir(&out, 0.0),
+        bad.write_dir(&out, 0.0, &maps::MapCrs::Local),
         Err(RasterError::BadTerrainCode { .. })
     ));
-    let e = layers.write_dir(&out, 200.0).unwrap_err();
+    let e = layers
+        .write_dir(&out, 200.0, &maps::MapCrs::Local)
+        .unwrap_err();
     assert!(matches!(e, RasterError::HeightOutOfRange { .. }), "{e}");
     one_line(&e, &out.join("dem.tif"));
     assert!(!out.exists());

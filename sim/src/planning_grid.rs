@@ -58,6 +58,9 @@ pub struct PlanningGrid {
     pub hazard: Vec<bool>,
     /// Terrain class code per cell (see [`TerrainClass::code`]; 0 = no data, treated as soil).
     pub terrain: Vec<u8>,
+    /// The rover footprint radius the clearances already subtract, metres: a keep-out closes
+    /// the cells within `r + footprint_radius_m` of it.
+    pub footprint_radius_m: f64,
     /// A* scratch of this grid's size, reused by every run on the grid ([`PlanningGrid::astar`]).
     astar_pool: AStarPool,
 }
@@ -168,6 +171,7 @@ impl PlanningGrid {
             clearance_m,
             hazard,
             terrain,
+            footprint_radius_m,
             astar_pool: AStarPool::default(),
         }
     }

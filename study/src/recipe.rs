@@ -1,7 +1,11 @@
 //! Map recipes (TOML): a `[terrain]` table with the fields of
-//! [`maps::procedural::TerrainParams`] (seed, size, georeference, craters, ridges, dune fields,
-//! sand patches, sun) and an optional `dem_datum_m`. `solsim map generate` turns one into the
-//! appearance, DEM and terrain-class GeoTIFFs.
+//! [`maps::procedural::TerrainParams`] (seed, size, placement in map metres, craters, ridges,
+//! dune fields, sand patches, sun), an optional `dem_datum_m`, and an optional
+//! `[georeference]` table, a [`MapAnchor`]: the map point `anchor_m` lies at planetocentric
+//! `lon_deg` east, `lat_deg` north on Mars. With it the GeoTIFFs carry the Jezero equirectangular
+//! CRS through that point ([`MarsEquirectangular::jezero`]); without it they carry only local
+//! metres. `solsim map generate` turns a recipe into the appearance, DEM and terrain-class
+//! GeoTIFFs.
 //!
 //! Every field has a physical range (below), and the map's size is held to the command's
 //! [`MemoryBudget`] before anything is generated.
@@ -12,9 +16,9 @@ use serde::Deserialize;
 
 use crate::check::Check;
 use crate::error::ScenarioError;
-use maps::MemoryBudget;
 use maps::procedural::TerrainParams;
 use maps::zone::MAX_COORDINATE_M;
+use maps::{MapAnchor, MapCrs, MarsEquirectangular, MemoryBudget};
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -22,6 +26,19 @@ struct RawRecipe {
     terrain: TerrainParams,
     #[serde(default)]
     dem_datum_m: f64,
+    georeference: Option<MapAnchor>,
+}
+
+/// A validated recipe.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Recipe {
+    /// What to generate.
+    pub terrain: TerrainParams,
+    /// The DEM files' datum: heights are stored as centimetres above it, metres.
+    pub dem_datum_m: f64,
+    /// Where the map lies on Mars: [`MapCrs::Mars`] from `[georeference]`, else
+    /// [`MapCrs::Local`].
+    pub crs: MapCrs,
 }
 
 /// Largest map side accepted, pixels.
@@ -37,14 +54,12 @@ const MAX_HEIGHT_M: f64 = 100_000.0;
 /// Map pixel size, metres.
 const MAX_RESOLUTION_M: f64 = 1_000.0;
 
-/// Read and validate a recipe within `budget`: the terrain and its datum.
+/// Read and validate a recipe within `budget`: the terrain, its datum and its georeference.
 ///
 /// # Errors
-/// A [`ScenarioError`] naming the file and the first `terrain.…` field at fault.
-pub fn load_recipe(
-    path: &Path,
-    budget: MemoryBudget,
-) -> Result<(TerrainParams, f64), ScenarioError> {
+/// A [`ScenarioError`] naming the file and the first `terrain.…` or `georeference.…` field at
+/// fault.
+pub fn load_recipe(path: &Path, budget: MemoryBudget) -> Result<Recipe, ScenarioError> {
     let (recipe, _sha256) = crate::input::read_toml::<RawRecipe>(path)?;
     validate(path, recipe, budget)
 }
@@ -57,15 +72,11 @@ pub fn recipe_from_toml_str(
     path: &Path,
     text: &str,
     budget: MemoryBudget,
-) -> Result<(TerrainParams, f64), ScenarioError> {
+) -> Result<Recipe, ScenarioError> {
     validate(path, crate::input::parse_toml(path, text)?, budget)
 }
 
-fn validate(
-    path: &Path,
-    recipe: RawRecipe,
-    budget: MemoryBudget,
-) -> Result<(TerrainParams, f64), ScenarioError> {
+fn validate(path: &Path, recipe: RawRecipe, budget: MemoryBudget) -> Result<Recipe, ScenarioError> {
     let c = Check { path };
     let t = &recipe.terrain;
     for (field, v) in [
@@ -212,5 +223,76 @@ fn validate(
             "metres",
         )?;
     }
-    Ok((recipe.terrain, recipe.dem_datum_m))
+    let crs = match &recipe.georeference {
+        None => MapCrs::Local,
+        Some(a) => {
+            coordinate("georeference.anchor_m[0]", a.anchor_m[0])?;
+            coordinate("georeference.anchor_m[1]", a.anchor_m[1])?;
+            c.in_range(
+                "georeference.lon_deg",
+                a.lon_deg,
+                -180.0,
+                360.0,
+                "degrees east (planetocentric)",
+            )?;
+            c.in_range(
+                "georeference.lat_deg",
+                a.lat_deg,
+                -89.0,
+                89.0,
+                "degrees north (planetocentric)",
+            )?;
+            MapCrs::Mars(MarsEquirectangular::jezero(a))
+        }
+    };
+    Ok(Recipe {
+        terrain: recipe.terrain,
+        dem_datum_m: recipe.dem_datum_m,
+        crs,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const TERRAIN: &str = "[terrain]\nwidth_px = 10\nheight_px = 10\n";
+
+    fn load(text: &str) -> Result<Recipe, ScenarioError> {
+        recipe_from_toml_str(Path::new("r.toml"), text, MemoryBudget::default())
+    }
+
+    #[test]
+    fn a_georeference_gives_the_jezero_crs_through_the_anchor() {
+        let r = load(&format!(
+            "{TERRAIN}[georeference]\nanchor_m = [5.0, 5.0]\nlon_deg = 77.45\nlat_deg = 18.44\n"
+        ))
+        .expect("a valid recipe");
+        let MapCrs::Mars(crs) = r.crs else {
+            panic!("{:?}", r.crs)
+        };
+        let [lon, lat] = crs.lonlat_from_map([5.0, 5.0]);
+        assert!((lon - 77.45).abs() < 1e-7 && (lat - 18.44).abs() < 1e-7);
+        assert_eq!(load(TERRAIN).expect("valid").crs, MapCrs::Local);
+    }
+
+    #[test]
+    fn a_bad_georeference_names_its_field() {
+        for (bad, field) in [
+            ("lon_deg = 77.45\nlat_deg = 95.0", "georeference.lat_deg"),
+            ("lon_deg = 400.0\nlat_deg = 18.0", "georeference.lon_deg"),
+            ("lon_deg = nan\nlat_deg = 18.0", "georeference.lon_deg"),
+        ] {
+            let e = load(&format!(
+                "{TERRAIN}[georeference]\nanchor_m = [0.0, 0.0]\n{bad}\n"
+            ))
+            .expect_err("refused");
+            assert!(e.to_string().contains(field), "{e}");
+        }
+        let e = load(&format!(
+            "{TERRAIN}[georeference]\nanchor_m = [0.0, 0.0]\nlon_deg = 77.0\nlat_deg = 18.0\nlat = 1\n"
+        ))
+        .expect_err("an unknown key is refused");
+        assert!(e.to_string().contains("lat"), "{e}");
+    }
 }

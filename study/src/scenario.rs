@@ -210,6 +210,10 @@ pub struct Scenario {
     pub zones: Arc<ZoneSet>,
     /// The route's passage clearance per leg (independent of strategy and seed), computed once.
     pub legs: Vec<LegClearance>,
+    /// Where the map lies on Mars: the appearance GeoTIFF's CRS ([`maps::MapCrs::Local`] for a
+    /// PNG, a file without a Mars CRS, or a map placed by `map.origin_m`, which overrides the
+    /// file's georeference).
+    pub map_crs: maps::MapCrs,
 }
 
 fn per_terrain(
@@ -1055,6 +1059,11 @@ impl Scenario {
                 .map_or("map", |(f, _)| f);
                 map_error(field, source)
             })?;
+        let map_crs = match m.georef {
+            Some(_) => maps::MapCrs::Local,
+            None => maps::raster_io::read_map_crs(&m.appearance)
+                .map_err(|e| map_error("map.appearance", e))?,
+        };
         let (x0, y0, x1, y1) = layers.dem.extent_m();
         if dem_extent_m.is_none() {
             // A DEM placed by neither the scenario nor its own tags: its grid is known only now.
@@ -1146,6 +1155,7 @@ impl Scenario {
             layers,
             zones: Arc::new(zones),
             legs,
+            map_crs,
         })
     }
 

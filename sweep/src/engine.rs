@@ -739,6 +739,81 @@ fn assemble(
     Ok((manifest, summary))
 }
 
+/// A complete sweep read back from its directory: the manifest, every run row, and the summary
+/// recomputed from the rows, which must equal the directory's `summary.json` byte for byte.
+#[derive(Debug, Clone)]
+pub struct CompletedSweep {
+    /// `manifest.json`.
+    pub manifest: Manifest,
+    /// `runs.parquet`, in run order.
+    pub rows: Vec<RunRow>,
+    /// The statistics of `rows` (as `summary.json` holds them).
+    pub summary: Summary,
+}
+
+/// Reads the complete sweep in `dir` (what `solsim report` shows): the manifest must say
+/// complete, `runs.parquet` and `summary.json` must have the SHA-256 it lists, and the summary
+/// recomputed from the rows must be the one on disk — so a report never shows numbers the
+/// rows do not give.
+///
+/// # Errors
+/// No manifest; a sweep still running (or a shard directory not merged); a file missing,
+/// changed since the sweep wrote it, or not a solsim table.
+pub fn read_complete(dir: &Path) -> Result<CompletedSweep, SweepError> {
+    let path = dir.join(MANIFEST);
+    let manifest = Manifest::read(dir)?
+        .ok_or_else(|| SweepError::format(&path, "(file)", "a sweep manifest", "no such file"))?;
+    if manifest.state != State::Complete {
+        return Err(SweepError::format(
+            &path,
+            "state",
+            "\"complete\" (resume the sweep with --resume first)",
+            "\"running\"",
+        ));
+    }
+    for name in ["runs.parquet", "summary.json"] {
+        let file = dir.join(name);
+        let listed = manifest.files.get(name).ok_or_else(|| {
+            SweepError::format(&path, format!("files.{name}"), "its SHA-256", "nothing")
+        })?;
+        let actual = sha256_file(&file)?;
+        if &actual != listed {
+            return Err(SweepError::format(
+                &file,
+                "(file)",
+                format!("the file the sweep wrote (SHA-256 {listed})"),
+                format!("a changed file (SHA-256 {actual})"),
+            ));
+        }
+    }
+    let rows = read_run_rows(&dir.join("runs.parquet"))?;
+    let summary = summarise(&rows, &manifest);
+    let mut text = serde_json::to_string_pretty(&summary).map_err(|e| SweepError::Io {
+        path: dir.join("summary.json"),
+        what: "cannot serialise".into(),
+        message: e.to_string(),
+    })?;
+    text.push('\n');
+    let on_disk = std::fs::read(dir.join("summary.json"))
+        .map_err(|e| io(&dir.join("summary.json"), "cannot read", e))?;
+    if on_disk != text.as_bytes() {
+        return Err(SweepError::format(
+            dir.join("summary.json"),
+            "(file)",
+            "the statistics of runs.parquet as this solsim computes them",
+            format!(
+                "other statistics (written by solsim {})",
+                manifest.solsim_version
+            ),
+        ));
+    }
+    Ok(CompletedSweep {
+        manifest,
+        rows,
+        summary,
+    })
+}
+
 /// Merges complete shard directories (any order) into `out`, writing exactly the files one
 /// unsharded sweep writes.
 ///

@@ -2,6 +2,8 @@
 //! check the bad-input contract (exit 2, exactly one `error:` line, no panic).
 #![allow(dead_code)] // each test binary uses its own subset
 
+pub mod browser;
+
 use std::path::PathBuf;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};

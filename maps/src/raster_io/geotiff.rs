@@ -2,14 +2,28 @@
 //!
 //! Written files carry `ModelPixelScaleTag` (33550) = `(res, res, 0)`, `ModelTiepointTag`
 //! (33922) tying raster point (0, 0) — the north-west corner of pixel (0, 0), PixelIsArea — to
-//! `origin_m`, and a minimal `GeoKeyDirectoryTag` (34735): projected model, PixelIsArea,
-//! user-defined projected CRS, metre units, plus a citation. Data are Deflate-compressed
-//! (horizontal predictor for integers).
+//! `origin_m`, and a `GeoKeyDirectoryTag` (34735). Data are Deflate-compressed (horizontal
+//! predictor for integers). The GeoKeys describe the map's [`MapCrs`]:
+//!
+//! - [`MapCrs::Mars`]: the full user-defined CRS, laid out as GDAL writes it — geographic CRS,
+//!   datum and ellipsoid user-defined with `GeogSemiMajorAxisGeoKey` = `GeogSemiMinorAxisGeoKey`
+//!   = 3 396 190 m (the IAU 2015 Mars sphere), degrees; projection user-defined with
+//!   `ProjCoordTransGeoKey` = 17 (CT_Equirectangular), `ProjStdParallel1GeoKey`,
+//!   `ProjCenterLongGeoKey`, `ProjCenterLatGeoKey` = 0 and `ProjFalseEasting/NorthingGeoKey` in
+//!   `GeoDoubleParamsTag` (34736); metres; citations naming the CRS, datum, sphere and prime
+//!   meridian in `GeoAsciiParamsTag` (34737). `gdalinfo` then reports an equidistant
+//!   cylindrical projection of the Mars sphere;
+//! - [`MapCrs::Local`]: the minimal directory of files from before solsim georeferenced its
+//!   maps — projected model, user-defined projected CRS, metres, citation "solsim local map
+//!   frame".
 //!
 //! Readers accept what GDAL writes for north-up grids: a tiepoint at any raster point,
 //! PixelIsPoint (shifted by half a pixel to the corner convention), or a
 //! `ModelTransformationTag` without rotation. They reject rotated, sheared, flipped,
-//! non-square and geographic (degree) georeferences, and ground-control-point sets.
+//! non-square and geographic (degree) georeferences, and ground-control-point sets. A file's
+//! CRS is [`MapCrs::Mars`] when its keys describe an equirectangular projection of a sphere of
+//! radius 3 396 190 m in degrees and metres (a latitude of origin is folded into the false
+//! northing); anything else, including the old local frame, reads as [`MapCrs::Local`].
 //!
 //! ## References
 //! OGC GeoTIFF Standard 1.1 (OGC 19-008r4), §7 (raster space, PixelIsArea / PixelIsPoint) and
@@ -25,8 +39,13 @@ use tiff::encoder::{Compression, DeflateLevel, Predictor, TiffEncoder, TiffValue
 use tiff::tags::Tag;
 use tiff::{ColorType, TiffError};
 
+use super::geokeys::{
+    GT_MODEL_TYPE, GT_RASTER_TYPE, GeoKeyTags, LINEAR_METRE, MODEL_TYPE_GEOGRAPHIC,
+    PROJ_LINEAR_UNITS, RASTER_PIXEL_IS_POINT, read_geokeys,
+};
 use super::sealed::{Samples, SamplesRef};
 use super::{RasterError, Sample, check_geo, check_shape, io_error, read_io_error, write_atomic};
+use crate::mars_crs::MapCrs;
 use crate::raster::{GeoTransform, Raster};
 
 /// Largest decoded image accepted, so a corrupt header cannot exhaust memory.
@@ -36,34 +55,6 @@ const MAX_DECODED_BYTES: usize = 2 << 30;
 /// per-value default.
 const MAX_TAG_BYTES: usize = 1 << 20;
 
-/// GeoKey ids and values used here (GeoTIFF 1.1 Annex B).
-const GT_MODEL_TYPE: u16 = 1024;
-const GT_RASTER_TYPE: u16 = 1025;
-const GT_CITATION: u16 = 1026;
-const PROJECTED_CS_TYPE: u16 = 3072;
-const PROJ_LINEAR_UNITS: u16 = 3076;
-const MODEL_TYPE_PROJECTED: u16 = 1;
-const MODEL_TYPE_GEOGRAPHIC: u16 = 2;
-const RASTER_PIXEL_IS_AREA: u16 = 1;
-const RASTER_PIXEL_IS_POINT: u16 = 2;
-const USER_DEFINED: u16 = 32767;
-const LINEAR_METRE: u16 = 9001;
-const GEO_ASCII_PARAMS_TAG: u16 = 34737;
-
-/// Citation stored in `GeoAsciiParamsTag` (`|` ends each GeoTIFF ASCII parameter).
-const CITATION: &str = "solsim local map frame (metres, x east, y north)|";
-
-/// The GeoKey directory written to every file: header, then (key, location, count, value).
-#[rustfmt::skip]
-const GEO_KEYS: [u16; 24] = [
-    1, 1, 0, 5, // version 1.1.0, five keys
-    GT_MODEL_TYPE, 0, 1, MODEL_TYPE_PROJECTED,
-    GT_RASTER_TYPE, 0, 1, RASTER_PIXEL_IS_AREA,
-    GT_CITATION, GEO_ASCII_PARAMS_TAG, CITATION.len() as u16, 0,
-    PROJECTED_CS_TYPE, 0, 1, USER_DEFINED,
-    PROJ_LINEAR_UNITS, 0, 1, LINEAR_METRE,
-];
-
 /// A raster read from a GeoTIFF, with the file's no-data value.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GeoTiff<T> {
@@ -71,6 +62,9 @@ pub struct GeoTiff<T> {
     pub raster: Raster<T>,
     /// The `GDAL_NODATA` (42113) value, if the file declares one.
     pub nodata: Option<f64>,
+    /// Where the map lies, from the file's GeoKeys ([`MapCrs::Local`] when the caller's
+    /// georeference overrides the file's, or the keys describe no Mars CRS).
+    pub crs: MapCrs,
 }
 
 /// Sample types a GeoTIFF may hold here.
@@ -88,6 +82,7 @@ pub(super) struct RawTiff {
     pub height: usize,
     pub geo: GeoTransform,
     pub nodata: Option<f64>,
+    pub crs: MapCrs,
 }
 
 /// Reads a single-band GeoTIFF of `T` (`u8`, `u16` unsigned, or `f32`).
@@ -118,20 +113,47 @@ pub fn read_geotiff<T: Sample>(
             data,
         },
         nodata: raw.nodata,
+        crs: raw.crs,
     })
 }
 
-/// Writes a single-band GeoTIFF atomically, Deflate-compressed, georeferenced by `raster.geo`,
-/// with `GDAL_NODATA` when `nodata` is given.
+/// The [`MapCrs`] a GeoTIFF's GeoKeys describe, without decoding its samples.
+pub(super) fn read_crs(path: &Path) -> Result<MapCrs, RasterError> {
+    super::check_regular_file(path)?;
+    let file = File::open(path).map_err(io_error(path))?;
+    let mut limits = Limits::default();
+    limits.decoding_buffer_size = MAX_TAG_BYTES;
+    let mut dec = Decoder::new(BufReader::new(file))
+        .map_err(tiff_error(path, true))?
+        .with_limits(limits);
+    Ok(read_geokeys(&mut dec, path)?.crs())
+}
+
+/// Writes a single-band GeoTIFF atomically, Deflate-compressed, georeferenced by `raster.geo`
+/// in the local map frame ([`MapCrs::Local`]), with `GDAL_NODATA` when `nodata` is given.
+///
+/// # Errors
+/// As [`write_geotiff_with_crs`].
+pub fn write_geotiff<T: Sample>(
+    path: &Path,
+    raster: &Raster<T>,
+    nodata: Option<f64>,
+) -> Result<(), RasterError> {
+    write_geotiff_with_crs(path, raster, nodata, &MapCrs::Local)
+}
+
+/// Writes a single-band GeoTIFF atomically, Deflate-compressed, georeferenced by `raster.geo`
+/// with the GeoKeys of `crs` (see the module docs), with `GDAL_NODATA` when `nodata` is given.
 ///
 /// # Errors
 /// [`RasterError::EmptyRaster`] / [`RasterError::DataLength`] for a malformed raster,
 /// [`RasterError::BadGeoreference`] for a non-finite origin or non-positive pixel size,
 /// [`RasterError::Io`] / [`RasterError::Encode`] when writing fails.
-pub fn write_geotiff<T: Sample>(
+pub fn write_geotiff_with_crs<T: Sample>(
     path: &Path,
     raster: &Raster<T>,
     nodata: Option<f64>,
+    crs: &MapCrs,
 ) -> Result<(), RasterError> {
     check_shape(path, raster)?;
     check_geo(path, &raster.geo)?;
@@ -151,6 +173,7 @@ pub fn write_geotiff<T: Sample>(
         h,
         geo: raster.geo,
         nodata: nodata_text.as_deref(),
+        keys: GeoKeyTags::of(crs),
     };
     write_atomic(path, |out| match T::as_samples(&raster.data) {
         SamplesRef::U8(d) => encode::<colortype::Gray8>(out, &head, d, Predictor::Horizontal),
@@ -167,6 +190,7 @@ struct Header<'a> {
     h: u32,
     geo: GeoTransform,
     nodata: Option<&'a str>,
+    keys: GeoKeyTags,
 }
 
 fn encode<C: EncColorType>(
@@ -191,9 +215,13 @@ where
         .map_err(&err)?;
     dir.write_tag(Tag::ModelTiepointTag, &[0.0, 0.0, 0.0, ox, oy, 0.0][..])
         .map_err(&err)?;
-    dir.write_tag(Tag::GeoKeyDirectoryTag, &GEO_KEYS[..])
+    dir.write_tag(Tag::GeoKeyDirectoryTag, &head.keys.directory[..])
         .map_err(&err)?;
-    dir.write_tag(Tag::GeoAsciiParamsTag, CITATION)
+    if !head.keys.doubles.is_empty() {
+        dir.write_tag(Tag::GeoDoubleParamsTag, &head.keys.doubles[..])
+            .map_err(&err)?;
+    }
+    dir.write_tag(Tag::GeoAsciiParamsTag, head.keys.ascii.as_str())
         .map_err(&err)?;
     if let Some(text) = head.nodata {
         dir.write_tag(Tag::GdalNodata, text).map_err(&err)?;
@@ -210,7 +238,7 @@ fn kind_of<T: Sample>() -> Kind {
 }
 
 /// Maps a tiff error to [`RasterError::Io`], or to `Decode` / `Encode` as `decoding` says.
-fn tiff_error(path: &Path, decoding: bool) -> impl Fn(TiffError) -> RasterError + '_ {
+pub(super) fn tiff_error(path: &Path, decoding: bool) -> impl Fn(TiffError) -> RasterError + '_ {
     move |e| match e {
         TiffError::IoError(source) if decoding => read_io_error(path, source),
         TiffError::IoError(source) => RasterError::Io {
@@ -267,10 +295,10 @@ pub(super) fn read_samples(
             found: describe(color, format),
         });
     }
-    let geo = match georef {
+    let (geo, crs) = match georef {
         Some(g) => {
             check_geo(path, &g)?;
-            g
+            (g, MapCrs::Local)
         }
         None => read_georef(&mut dec, path)?,
     };
@@ -307,6 +335,7 @@ pub(super) fn read_samples(
         height,
         geo,
         nodata,
+        crs,
     })
 }
 
@@ -334,55 +363,7 @@ fn describe(color: ColorType, sample_format: u16) -> String {
     format!("{}-bit {number} {layout}", color.bit_depth())
 }
 
-/// The GeoKeys this reader interprets (all optional).
-#[derive(Default)]
-struct GeoKeys {
-    model_type: Option<u16>,
-    raster_type: Option<u16>,
-    linear_units: Option<u16>,
-}
-
-fn read_geokeys<R: Read + Seek>(dec: &mut Decoder<R>, path: &Path) -> Result<GeoKeys, RasterError> {
-    let bad = |detail: String| RasterError::BadGeoreference {
-        path: path.to_path_buf(),
-        detail,
-    };
-    let Some(value) = dec
-        .find_tag(Tag::GeoKeyDirectoryTag)
-        .map_err(tiff_error(path, true))?
-    else {
-        return Ok(GeoKeys::default());
-    };
-    let dir = value.into_u16_vec().map_err(|e| {
-        bad(format!(
-            "a GeoKeyDirectory that is not a list of shorts ({e})"
-        ))
-    })?;
-    let n = usize::from(dir.get(3).copied().unwrap_or(0));
-    if dir.len() < 4 || dir.len() < 4 + 4 * n {
-        return Err(bad(format!(
-            "a truncated GeoKeyDirectory ({} values for {n} keys)",
-            dir.len()
-        )));
-    }
-    let mut keys = GeoKeys::default();
-    for entry in dir[4..4 + 4 * n].chunks_exact(4) {
-        // Location 0 means the value is stored inline; the keys read here are always inline.
-        let (id, location, value) = (entry[0], entry[1], entry[3]);
-        let slot = match id {
-            GT_MODEL_TYPE => &mut keys.model_type,
-            GT_RASTER_TYPE => &mut keys.raster_type,
-            PROJ_LINEAR_UNITS => &mut keys.linear_units,
-            _ => continue,
-        };
-        if location == 0 {
-            *slot = Some(value);
-        }
-    }
-    Ok(keys)
-}
-
-fn read_f64s<R: Read + Seek>(
+pub(super) fn read_f64s<R: Read + Seek>(
     dec: &mut Decoder<R>,
     path: &Path,
     tag: Tag,
@@ -403,19 +384,19 @@ fn read_f64s<R: Read + Seek>(
 fn read_georef<R: Read + Seek>(
     dec: &mut Decoder<R>,
     path: &Path,
-) -> Result<GeoTransform, RasterError> {
+) -> Result<(GeoTransform, MapCrs), RasterError> {
     let bad = |detail: String| RasterError::BadGeoreference {
         path: path.to_path_buf(),
         detail,
     };
     let keys = read_geokeys(dec, path)?;
-    if keys.model_type == Some(MODEL_TYPE_GEOGRAPHIC) {
+    if keys.short(GT_MODEL_TYPE) == Some(MODEL_TYPE_GEOGRAPHIC) {
         return Err(bad(
             "a geographic CRS in degrees (GTModelTypeGeoKey = 2); reproject to metres first"
                 .to_owned(),
         ));
     }
-    if let Some(units) = keys.linear_units.filter(|&u| u != LINEAR_METRE) {
+    if let Some(units) = keys.short(PROJ_LINEAR_UNITS).filter(|&u| u != LINEAR_METRE) {
         return Err(bad(format!(
             "ProjLinearUnitsGeoKey = {units} (only 9001, metre, is supported)"
         )));
@@ -497,14 +478,14 @@ fn read_georef<R: Read + Seek>(
             )));
         }
     };
-    if keys.raster_type == Some(RASTER_PIXEL_IS_POINT) {
+    if keys.short(GT_RASTER_TYPE) == Some(RASTER_PIXEL_IS_POINT) {
         // Raster point (0, 0) is the centre of pixel (0, 0); move to its north-west corner.
         ox -= 0.5 * res;
         oy += 0.5 * res;
     }
     let geo = GeoTransform::new(ox, oy, res);
     check_geo(path, &geo)?;
-    Ok(geo)
+    Ok((geo, keys.crs()))
 }
 
 fn check_square(sx: f64, sy: f64) -> Result<(), String> {

@@ -6,8 +6,9 @@ use std::path::Path;
 
 use super::{
     RasterError, check_geo, check_shape, dem_to_cm_for, io_error, pixel_of_index, read_dem,
-    read_raster, write_geotiff,
+    read_raster, write_geotiff_with_crs,
 };
+use crate::mars_crs::MapCrs;
 use crate::raster::{GeoTransform, Raster};
 use crate::terrain::TerrainClass;
 
@@ -76,7 +77,8 @@ impl MapLayers {
     /// Writes the map into `dir` (created if missing) as three GeoTIFFs:
     /// [`APPEARANCE_FILE`](Self::APPEARANCE_FILE) (u8),
     /// [`DEM_FILE`](Self::DEM_FILE) (u16 centimetres above `datum_m`) and
-    /// [`TERRAIN_FILE`](Self::TERRAIN_FILE) (u8, `GDAL_NODATA` = 0).
+    /// [`TERRAIN_FILE`](Self::TERRAIN_FILE) (u8, `GDAL_NODATA` = 0), each carrying `crs` in
+    /// its GeoKeys (see [`write_geotiff_with_crs`]).
     ///
     /// Everything is validated before the first file is written, and each file is replaced
     /// atomically, so bad layers leave `dir` untouched.
@@ -85,7 +87,7 @@ impl MapLayers {
     /// [`RasterError::HeightOutOfRange`] / [`RasterError::NonFinite`] for a DEM that 16-bit cm
     /// above `datum_m` cannot hold, [`RasterError::BadTerrainCode`], [`RasterError::ExtentMismatch`]
     /// for layers covering different ground, malformed rasters, and I/O failures.
-    pub fn write_dir(&self, dir: &Path, datum_m: f64) -> Result<(), RasterError> {
+    pub fn write_dir(&self, dir: &Path, datum_m: f64, crs: &MapCrs) -> Result<(), RasterError> {
         let app_path = dir.join(Self::APPEARANCE_FILE);
         let dem_path = dir.join(Self::DEM_FILE);
         let terrain_path = dir.join(Self::TERRAIN_FILE);
@@ -100,9 +102,9 @@ impl MapLayers {
         let dem_cm = dem_to_cm_for(&self.dem, datum_m, &dem_path)?;
 
         fs::create_dir_all(dir).map_err(io_error(dir))?;
-        write_geotiff(&app_path, &self.appearance, None)?;
-        write_geotiff(&dem_path, &dem_cm, None)?;
-        write_geotiff(&terrain_path, &self.terrain, Some(0.0))
+        write_geotiff_with_crs(&app_path, &self.appearance, None, crs)?;
+        write_geotiff_with_crs(&dem_path, &dem_cm, None, crs)?;
+        write_geotiff_with_crs(&terrain_path, &self.terrain, Some(0.0), crs)
     }
 
     /// Checks the DEM and terrain layers cover the appearance layer's extent within half a

@@ -1,0 +1,297 @@
+//! `solsim report DIR --out OUT`: the HTML report of a compare output directory or a sweep
+//! directory (see [`crate::report_html`]).
+//!
+//! A compare directory holds each strategy's sol log as JSON but not the maps and zones a
+//! figure draws, so the report loads the scenario the run names (or `--scenario`), checks its
+//! SHA-256 against the run's provenance, runs it again on the run's seed — deterministic, so
+//! this gives the run back — and refuses to go on unless every JSON document it regenerates
+//! equals the one in the directory. A report therefore never mixes a run with a scenario, map
+//! or solsim version it did not come from. A sweep directory's rows are read back and its
+//! summary recomputed and checked the same way ([`sweep::engine::read_complete`]).
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context as _, bail};
+use clap::Args;
+use maps::MemoryBudget;
+use serde_json::Value;
+use sim::Strategy;
+use study::Scenario;
+use sweep::engine::SweepSpec;
+
+use crate::output_set::OutputSet;
+use crate::progress::Progress;
+use crate::{report, report_html, report_runs};
+
+/// Largest run document read (a 1000-sol run's JSON is a few MB).
+const MAX_RUN_JSON_BYTES: u64 = 1 << 30;
+
+/// `solsim report`'s arguments.
+#[derive(Args)]
+pub struct ReportArgs {
+    /// A `solsim compare` output directory (with its `<scenario>.<strategy>.json` files) or a
+    /// complete `solsim sweep` directory (with manifest.json).
+    #[arg(value_name = "RUN_OR_SWEEP_DIR")]
+    pub dir: PathBuf,
+    /// Directory for report.html, replaced whole (it must be new, empty, or an earlier
+    /// solsim output).
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// The scenario file of a compare directory, when it is no longer at the path its
+    /// provenance names (relative paths are taken from the current directory).
+    #[arg(long, value_name = "FILE")]
+    pub scenario: Option<PathBuf>,
+    /// Grow the keep-outs on the map figures by this uncertainty r, metres [default: each
+    /// strategy's r at its first fault, else its largest end-of-sol r].
+    #[arg(long, value_name = "R")]
+    pub map_r_m: Option<f64>,
+}
+
+/// Checks `--map-r-m`.
+///
+/// # Errors
+/// A negative, non-finite or absurd value.
+pub fn check_map_r(r: Option<f64>) -> anyhow::Result<()> {
+    match r {
+        Some(r) if !(r.is_finite() && (0.0..=10_000.0).contains(&r)) => {
+            bail!("--map-r-m: expected an uncertainty radius from 0 to 10000 metres, got {r}")
+        }
+        _ => Ok(()),
+    }
+}
+
+/// Runs `solsim report`.
+///
+/// # Errors
+/// A directory that is neither a compare output nor a complete sweep; a run that the scenario
+/// no longer gives; an unwritable `--out`.
+pub fn run(a: &ReportArgs, budget: MemoryBudget, stdout: &mut dyn Write) -> anyhow::Result<()> {
+    check_map_r(a.map_r_m)?;
+    let meta = std::fs::metadata(&a.dir)
+        .with_context(|| format!("{}: cannot read the directory", a.dir.display()))?;
+    if !meta.is_dir() {
+        bail!(
+            "{}: expected a compare output directory or a sweep directory, found a file",
+            a.dir.display()
+        );
+    }
+    OutputSet::check(&a.out)?;
+    let (html, what) = if a.dir.join(sweep::manifest::MANIFEST).exists() {
+        let sweep = sweep::engine::read_complete(&a.dir)?;
+        let what = format!("sweep of {} runs", sweep.summary.runs);
+        (report_html::sweep_report(&sweep)?, what)
+    } else {
+        compare_dir_report(a, budget)?
+    };
+    let set = OutputSet::begin(&a.out)?;
+    let path = set.write("report.html", html.as_bytes())?;
+    set.commit()?;
+    let figures = html.matches("<figure").count();
+    writeln!(
+        stdout,
+        "wrote {} ({what}; {figures} figures inline, {:.0} KB, no network needed)",
+        path.display(),
+        html.len() as f64 / 1024.0
+    )?;
+    Ok(())
+}
+
+/// One run document of a compare directory.
+struct RunDoc {
+    path: PathBuf,
+    value: Value,
+    strategy: Strategy,
+}
+
+fn field<'a>(
+    path: &Path,
+    v: &'a Value,
+    pointer: &str,
+    expected: &str,
+) -> anyhow::Result<&'a Value> {
+    v.pointer(pointer).ok_or_else(|| {
+        anyhow::anyhow!(
+            "{}: {}: expected {expected}, got nothing",
+            path.display(),
+            pointer.trim_start_matches('/').replace('/', ".")
+        )
+    })
+}
+
+fn compare_dir_report(a: &ReportArgs, budget: MemoryBudget) -> anyhow::Result<(String, String)> {
+    let mut docs: Vec<RunDoc> = Vec::new();
+    let mut over_runs: Option<PathBuf> = None;
+    let mut entries: Vec<PathBuf> = std::fs::read_dir(&a.dir)
+        .with_context(|| format!("{}: cannot list the directory", a.dir.display()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .collect();
+    entries.sort();
+    for path in entries {
+        let name = path
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        if name.ends_with(".over-runs.json") {
+            over_runs = Some(path);
+            continue;
+        }
+        if !name.ends_with(".json") || !path.is_file() {
+            continue;
+        }
+        let text = maps::input_file::read_text_file_capped(&path, MAX_RUN_JSON_BYTES)
+            .with_context(|| format!("{}: cannot read", path.display()))?;
+        let value: Value = serde_json::from_str(&text).with_context(|| {
+            format!("{}: expected a solsim run document (JSON)", path.display())
+        })?;
+        let name = field(&path, &value, "/strategy", "a strategy name")?;
+        let strategy = name.as_str().and_then(Strategy::from_name).ok_or_else(|| {
+            anyhow::anyhow!(
+                "{}: strategy: expected one of replay, ground, onboard, extension, \
+                     extension+onboard, got {name}",
+                path.display()
+            )
+        })?;
+        docs.push(RunDoc {
+            path,
+            value,
+            strategy,
+        });
+    }
+    let Some(first) = docs.first() else {
+        bail!(
+            "{}: expected a compare output directory (<scenario>.<strategy>.json files) or a \
+             sweep directory (manifest.json); found neither",
+            a.dir.display()
+        );
+    };
+    let text_of = |d: &RunDoc, pointer: &str, expected: &str| -> anyhow::Result<String> {
+        let v = field(&d.path, &d.value, pointer, expected)?;
+        Ok(v.as_str().map_or_else(|| v.to_string(), str::to_string))
+    };
+    let sha = text_of(
+        first,
+        "/provenance/scenario_sha256",
+        "the scenario's SHA-256",
+    )?;
+    let seed = field(&first.path, &first.value, "/seed", "the run's seed")?
+        .as_u64()
+        .ok_or_else(|| {
+            anyhow::anyhow!(
+                "{}: seed: expected an unsigned integer",
+                first.path.display()
+            )
+        })?;
+    for d in &docs[1..] {
+        let other = text_of(d, "/provenance/scenario_sha256", "the scenario's SHA-256")?;
+        if other != sha || d.value.get("seed").and_then(Value::as_u64) != Some(seed) {
+            bail!(
+                "{}: expected a run of the scenario and seed of {} (one compare run per \
+                 directory), got another",
+                d.path.display(),
+                first.path.display()
+            );
+        }
+    }
+    let scenario_path = match &a.scenario {
+        Some(p) => p.clone(),
+        None => PathBuf::from(text_of(
+            first,
+            "/provenance/scenario_file",
+            "the scenario file's path",
+        )?),
+    };
+    if a.scenario.is_none() && !scenario_path.exists() {
+        bail!(
+            "{}: provenance.scenario_file: the scenario {} is not there (paths are relative \
+             to where compare ran); give it with --scenario FILE",
+            first.path.display(),
+            scenario_path.display()
+        );
+    }
+    let scenario = Scenario::load_within(&scenario_path, budget)?;
+    if scenario.sha256 != sha {
+        bail!(
+            "{}: expected the scenario the run used (SHA-256 {sha}), got one with SHA-256 {} \
+             (edited since the run?)",
+            scenario_path.display(),
+            scenario.sha256
+        );
+    }
+    let strategies: Vec<Strategy> = scenario
+        .strategies()
+        .into_iter()
+        .chain(Strategy::ALL)
+        .filter(|s| docs.iter().any(|d| d.strategy == *s))
+        .fold(Vec::new(), |mut v, s| {
+            if !v.contains(&s) {
+                v.push(s);
+            }
+            v
+        });
+    let progress = Progress::new(false, "report", "steps", 3);
+    let outcomes = scenario.compare(&strategies, seed);
+    progress.inc();
+    // The same documents, except where the scenario file is (a path, as given to compare).
+    let comparable = |v: &Value| {
+        let mut v = v.clone();
+        if let Some(p) = v.get_mut("provenance").and_then(Value::as_object_mut) {
+            p.remove("scenario_file");
+        }
+        v
+    };
+    for o in &outcomes {
+        let doc = docs
+            .iter()
+            .find(|d| d.strategy == o.strategy)
+            .expect("a strategy of the directory");
+        let again = report::run_json(&scenario, o, &scenario.legs);
+        if comparable(&again) != comparable(&doc.value) {
+            bail!(
+                "{}: expected the run {} gives on seed {seed} with solsim {}, got another \
+                 (written by another solsim version, or edited)",
+                doc.path.display(),
+                scenario_path.display(),
+                env!("CARGO_PKG_VERSION")
+            );
+        }
+    }
+    let summary = match &over_runs {
+        None => None,
+        Some(path) => {
+            let text = maps::input_file::read_text_file_capped(path, MAX_RUN_JSON_BYTES)
+                .with_context(|| format!("{}: cannot read", path.display()))?;
+            let value: Value = serde_json::from_str(&text).with_context(|| {
+                format!("{}: expected a compare --runs summary", path.display())
+            })?;
+            let runs = value.get("runs").and_then(Value::as_u64).ok_or_else(|| {
+                anyhow::anyhow!("{}: runs: expected the number of runs", path.display())
+            })?;
+            sweep::engine::check_runs(runs, report_runs::MIN_RUNS)?;
+            let summary =
+                crate::cmd_sweep::summary_in_memory(&scenario, &SweepSpec::new(&scenario, runs));
+            if report_runs::summary_json(&summary) != text {
+                bail!(
+                    "{}: expected the statistics of {runs} runs of {} with solsim {}, got \
+                     others (written by another solsim version, or edited)",
+                    path.display(),
+                    scenario_path.display(),
+                    env!("CARGO_PKG_VERSION")
+                );
+            }
+            Some(summary)
+        }
+    };
+    progress.inc();
+    let html = report_html::run_report(&scenario, &outcomes, summary.as_ref(), a.map_r_m)?;
+    progress.finish();
+    let what = match &summary {
+        Some(s) => format!(
+            "{} strategies on seed {seed}, and over {} runs",
+            outcomes.len(),
+            s.runs
+        ),
+        None => format!("{} strategies on seed {seed}", outcomes.len()),
+    };
+    Ok((html, what))
+}
