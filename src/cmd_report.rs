@@ -55,10 +55,47 @@ pub struct ReportArgs {
 pub fn check_map_r(r: Option<f64>) -> anyhow::Result<()> {
     match r {
         Some(r) if !(r.is_finite() && (0.0..=10_000.0).contains(&r)) => {
-            bail!("--map-r-m: expected an uncertainty radius from 0 to 10000 metres, got {r}")
+            let got = if r.abs() < 1e6 {
+                format!("{r}")
+            } else {
+                format!("{r:e}")
+            };
+            bail!("--map-r-m: expected an uncertainty radius from 0 to 10000 metres, got {got}")
         }
         _ => Ok(()),
     }
+}
+
+/// `--out` must be a directory of its own: not the directory reported on, nor one holding
+/// anything but an earlier report (it is replaced whole, so a run or a sweep there would be
+/// lost).
+fn check_out(dir: &Path, out: &Path) -> anyhow::Result<()> {
+    let Ok(entries) = std::fs::read_dir(out) else {
+        return Ok(());
+    };
+    if let (Ok(a), Ok(b)) = (dir.canonicalize(), out.canonicalize())
+        && (a == b || a.starts_with(&b))
+    {
+        bail!(
+            "--out: expected a directory of its own for report.html, got {}, which holds the \
+             directory reported on (it would be replaced)",
+            out.display()
+        );
+    }
+    let others: Vec<String> = entries
+        .filter_map(|e| e.ok().map(|e| e.file_name().to_string_lossy().into_owned()))
+        .filter(|n| n != crate::output_set::MARKER_FILE && n != "report.html")
+        .collect();
+    if !others.is_empty() {
+        bail!(
+            "--out: expected a new or empty directory or an earlier report, got {}, which \
+             holds {} other files ({}…); choose another --out",
+            out.display(),
+            others.len(),
+            others[0]
+        );
+    }
+    Ok(())
 }
 
 /// Runs `solsim report`.
@@ -76,10 +113,11 @@ pub fn run(a: &ReportArgs, budget: MemoryBudget, stdout: &mut dyn Write) -> anyh
             a.dir.display()
         );
     }
+    check_out(&a.dir, &a.out)?;
     OutputSet::check(&a.out)?;
     let (html, what) = if a.dir.join(sweep::manifest::MANIFEST).exists() {
         let sweep = sweep::engine::read_complete(&a.dir)?;
-        let what = format!("sweep of {} runs", sweep.summary.runs);
+        let what = report_html::sweep_title(&sweep);
         (report_html::sweep_report(&sweep)?, what)
     } else {
         compare_dir_report(a, budget)?
@@ -144,6 +182,13 @@ fn compare_dir_report(a: &ReportArgs, budget: MemoryBudget) -> anyhow::Result<(S
         let value: Value = serde_json::from_str(&text).with_context(|| {
             format!("{}: expected a solsim run document (JSON)", path.display())
         })?;
+        if !value.is_object() {
+            bail!(
+                "{}: expected a solsim run document (a JSON object with provenance, strategy \
+                 and sols), got another JSON value",
+                path.display()
+            );
+        }
         let name = field(&path, &value, "/strategy", "a strategy name")?;
         let strategy = name.as_str().and_then(Strategy::from_name).ok_or_else(|| {
             anyhow::anyhow!(
@@ -152,6 +197,15 @@ fn compare_dir_report(a: &ReportArgs, budget: MemoryBudget) -> anyhow::Result<(S
                 path.display()
             )
         })?;
+        if let Some(twin) = docs.iter().find(|d| d.strategy == strategy) {
+            bail!(
+                "{}: expected one run document per strategy, got a second for {} (the first is \
+                 {})",
+                path.display(),
+                strategy.name(),
+                twin.path.display()
+            );
+        }
         docs.push(RunDoc {
             path,
             value,
@@ -218,6 +272,23 @@ fn compare_dir_report(a: &ReportArgs, budget: MemoryBudget) -> anyhow::Result<(S
             scenario.sha256
         );
     }
+    for (field, file, sha) in &scenario.inputs_sha256 {
+        let pointer = format!("/provenance/inputs_sha256/{field}");
+        match first.value.pointer(&pointer).and_then(Value::as_str) {
+            Some(recorded) if recorded == sha => {}
+            Some(recorded) => bail!(
+                "{} ({field} of {}): expected the file the run used (SHA-256 {recorded}), got \
+                 one with SHA-256 {sha} (edited since the run?)",
+                file.display(),
+                scenario_path.display()
+            ),
+            None => bail!(
+                "{}: provenance.inputs_sha256.{field}: expected the SHA-256 of the run's input \
+                 file, got nothing (written by an older solsim: run compare again)",
+                first.path.display()
+            ),
+        }
+    }
     let strategies: Vec<Strategy> = scenario
         .strategies()
         .into_iter()
@@ -283,15 +354,16 @@ fn compare_dir_report(a: &ReportArgs, budget: MemoryBudget) -> anyhow::Result<(S
         }
     };
     progress.inc();
-    let html = report_html::run_report(&scenario, &outcomes, summary.as_ref(), a.map_r_m)?;
+    let figures = report_html::run_figures(&scenario, &outcomes, a.map_r_m)?;
+    let html = report_html::run_report(&scenario, &outcomes, summary.as_ref(), &figures)?;
     progress.finish();
+    let strategies = match outcomes.len() {
+        1 => "1 strategy".to_string(),
+        n => format!("{n} strategies"),
+    };
     let what = match &summary {
-        Some(s) => format!(
-            "{} strategies on seed {seed}, and over {} runs",
-            outcomes.len(),
-            s.runs
-        ),
-        None => format!("{} strategies on seed {seed}", outcomes.len()),
+        Some(s) => format!("{strategies} on seed {seed}, and over {} runs", s.runs),
+        None => format!("{strategies} on seed {seed}"),
     };
     Ok((html, what))
 }

@@ -548,15 +548,14 @@ fn compare(
     }
     let mut extra: Vec<(String, String)> = Vec::new();
     if !a.output.no_files {
-        for (name, _, svg) in solsim::report_html::run_figures(&scenario, &outcomes, a.map_r_m)? {
-            extra.push((name, svg));
-        }
+        let figures = solsim::report_html::run_figures(&scenario, &outcomes, a.map_r_m)?;
         if a.report {
             extra.push((
                 "report.html".into(),
-                solsim::report_html::run_report(&scenario, &outcomes, summary.as_ref(), a.map_r_m)?,
+                solsim::report_html::run_report(&scenario, &outcomes, summary.as_ref(), &figures)?,
             ));
         }
+        extra.extend(figures.into_iter().map(|(name, _, svg)| (name, svg)));
     }
     extra.extend(summary.iter().map(|s| {
         (

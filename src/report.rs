@@ -22,6 +22,11 @@ pub fn provenance(scenario: &Scenario) -> Value {
         "scenario": scenario.name,
         "scenario_file": scenario.path.display().to_string(),
         "scenario_sha256": scenario.sha256,
+        "inputs_sha256": scenario
+            .inputs_sha256
+            .iter()
+            .map(|(field, _, sha)| (field.to_string(), Value::from(sha.as_str())))
+            .collect::<serde_json::Map<String, Value>>(),
         "seed": scenario.campaign.seed,
         "solsim_version": env!("CARGO_PKG_VERSION"),
     })
@@ -132,22 +137,6 @@ fn csv_quote(s: &str) -> String {
     } else {
         s.to_string()
     }
-}
-
-/// GeoJSON of one run in Mars longitude/latitude (the `<scenario>.<strategy>.geojson` file,
-/// see [`crate::report_gis::paths_layer`]): the driven path per sol (LineString, estimated
-/// positions) and the sol-end positions (Point) with the uncertainty as MMGIS-style ellipse
-/// properties (`uncertainty_semi_major_m`, `uncertainty_semi_minor_m`, `uncertainty_angle_deg`;
-/// a disc, so both axes equal the radius and the angle is 0); map metres in the properties.
-#[must_use]
-pub fn run_geojson(scenario: &Scenario, outcome: &CampaignOutcome) -> Value {
-    let crs = scenario.map_crs.mars_or_default();
-    let text = crate::report_gis::paths_layer(scenario, outcome).geojson(
-        &crs,
-        crate::report_gis::Frame::LonLat,
-        "",
-    );
-    serde_json::from_str(&text).unwrap_or(Value::Null)
 }
 
 /// Write the JSON and CSV of one run and its GIS layers ([`crate::report_gis::run_layers`],

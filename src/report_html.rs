@@ -63,7 +63,7 @@ pub fn run_figures(
             figures::metres_by_sol_svg(&format!("{name}: metres driven per sol"), outcomes)?,
         ),
     ];
-    for (i, o) in outcomes.iter().enumerate() {
+    for o in outcomes {
         let strategy = o.strategy.name();
         let r = map_r_m.unwrap_or_else(|| figures::default_map_r_m(o));
         let why = if map_r_m.is_some() {
@@ -80,8 +80,32 @@ pub fn run_figures(
                  footprint, the route, the driven path, each sol's end with its uncertainty \
                  disc, faults in red (paper 000 Fig. 3-4)."
             ),
-            figures::route_map_svg(scenario, o, i, r)?,
+            figures::route_map_svg(scenario, o, r, None)?,
         ));
+        // A zoom on each fault, at the fault's own r (paper 000 Fig. 4 shows sol 385's).
+        let footprint_m = scenario.campaign.grid.footprint_radius_m;
+        for s in &o.sols {
+            let Some(f) = &s.fault else { continue };
+            let r_fault = map_r_m.unwrap_or(f.uncertainty_m);
+            out.push((
+                format!("{name}.{strategy}.fault-sol{}.map.svg", s.sol),
+                format!(
+                    "{strategy}: the {} of sol {} after {:.1} m, at r = {:.2} m: the keep-outs \
+                     grown by r = {r_fault:.2} m plus the footprint, the path and the disc at \
+                     the end of the drive.",
+                    f.kind.name(),
+                    s.sol,
+                    f.after_m,
+                    f.uncertainty_m
+                ),
+                figures::route_map_svg(
+                    scenario,
+                    o,
+                    r_fault,
+                    Some(figures::fault_window(f.position_m, r_fault, footprint_m)),
+                )?,
+            ));
+        }
         if let Some(svg) =
             figures::sol_plans_gantt_svg(&format!("{name}: {strategy} sol plans (LMST)"), o)?
         {
@@ -177,7 +201,8 @@ fn csv_fields(line: &str) -> Vec<String> {
 }
 
 /// The HTML report of one compare run: `outcomes` of `scenario` on its seed, `over_runs` when
-/// the run also went over seeded worlds (`compare --runs`), figures from [`run_figures`].
+/// the run also went over seeded worlds (`compare --runs`), `figures` from [`run_figures`]
+/// (file name, caption, SVG).
 ///
 /// # Errors
 /// When a figure cannot be drawn.
@@ -185,7 +210,7 @@ pub fn run_report(
     scenario: &Scenario,
     outcomes: &[CampaignOutcome],
     over_runs: Option<&Summary>,
-    map_r_m: Option<f64>,
+    figures: &[(String, String, String)],
 ) -> anyhow::Result<String> {
     let mut s = String::new();
     let _ = writeln!(
@@ -254,6 +279,7 @@ pub fn run_report(
         ]);
     }
     table(&mut s, "compare", &rows);
+    science_table(&mut s, outcomes);
     let verdict = report::against_ground(scenario, outcomes);
     if !verdict.trim().is_empty() {
         s.push_str("<h2 id=\"verdict\">Against ground-in-the-loop</h2>\n");
@@ -270,8 +296,8 @@ pub fn run_report(
         statistics_tables(&mut s, summary);
     }
     s.push_str("<h2 id=\"figures\">Figures</h2>\n");
-    for (name, caption, svg) in run_figures(scenario, outcomes, map_r_m)? {
-        figure_html(&mut s, &name, &caption, &svg);
+    for (name, caption, svg) in figures {
+        figure_html(&mut s, name, caption, svg);
     }
     s.push_str("<h2 id=\"sol-logs\">Sol logs</h2>\n");
     for o in outcomes {
@@ -294,6 +320,34 @@ pub fn run_report(
         }
     }
     Ok(page(&format!("solsim report: {}", scenario.name), &s))
+}
+
+/// Science campaigns side by side (`done / failed` per campaign and strategy), when the
+/// scenario has any (as under the terminal's compare table).
+fn science_table(s: &mut String, outcomes: &[CampaignOutcome]) {
+    let Some(first) = outcomes.iter().find(|o| !o.totals.science.is_empty()) else {
+        return;
+    };
+    let campaigns: Vec<&String> = first.totals.science.keys().collect();
+    let mut rows = vec![
+        std::iter::once("strategy".to_string())
+            .chain(campaigns.iter().map(|c| format!("{c} done / failed")))
+            .collect::<Vec<_>>(),
+    ];
+    for o in outcomes {
+        rows.push(
+            std::iter::once(o.strategy.name().to_string())
+                .chain(campaigns.iter().map(|c| {
+                    o.totals
+                        .science
+                        .get(*c)
+                        .map_or("-".into(), |t| format!("{} / {}", t.done, t.failed))
+                }))
+                .collect(),
+        );
+    }
+    s.push_str("<h3 id=\"science\">Science campaigns</h3>\n");
+    table(s, "science", &rows);
 }
 
 /// The rate, spread and paired-difference tables of a summary.
@@ -386,6 +440,18 @@ fn statistics_tables(s: &mut String, summary: &Summary) {
     }
 }
 
+/// `sweep of 200 runs`, or for a shard `shard 1 of 2 (runs 0..100 of a sweep of 200)`.
+#[must_use]
+pub fn sweep_title(sweep: &CompletedSweep) -> String {
+    match &sweep.manifest.shard {
+        None => format!("sweep of {} runs", sweep.manifest.runs),
+        Some(sh) => format!(
+            "shard {} of {} (runs {}..{} of a sweep of {})",
+            sh.index, sh.count, sh.first_run, sh.end_run, sweep.manifest.runs
+        ),
+    }
+}
+
 /// The HTML report of a complete sweep directory.
 ///
 /// # Errors
@@ -395,11 +461,12 @@ pub fn sweep_report(sweep: &CompletedSweep) -> anyhow::Result<String> {
     let summary = &sweep.summary;
     let name = &m.scenario.name;
     let mut s = String::new();
+    let runs = sweep.runs_here;
     let _ = writeln!(
         s,
-        "<h1>{} — sweep of {} runs</h1>",
+        "<h1>{} — {}</h1>",
         escape(name),
-        summary.runs
+        escape(&sweep_title(sweep))
     );
     let mut meta: Vec<[String; 2]> = vec![
         ["scenario SHA-256".into(), m.scenario.sha256.clone()],
@@ -438,10 +505,9 @@ pub fn sweep_report(sweep: &CompletedSweep) -> anyhow::Result<String> {
         &mut s,
         &format!("{name}.sols-cdf.svg"),
         &format!(
-            "Empirical distribution of the {what} per strategy over {} runs; a run that did not \
-             get there within the calendar counts only in the denominator (the curve stays \
-             below 1).",
-            summary.runs
+            "Empirical distribution of the {what} per strategy over {runs} runs; a run that did \
+             not get there within the calendar counts only in the denominator (the curve stays \
+             below 1)."
         ),
         &figures::segment_sols_cdf_svg(
             &format!("{name}: {what}"),
@@ -461,7 +527,7 @@ pub fn sweep_report(sweep: &CompletedSweep) -> anyhow::Result<String> {
         &format!("{name}.rates.svg"),
         "Share of runs with a NO_PATH fault, any fault, the truth outside the disc, and the \
          goal reached, per strategy, with 95 % Wilson intervals.",
-        &figures::rates_svg(&format!("{name}: rates over {} runs", summary.runs), &rates)?,
+        &figures::rates_svg(&format!("{name}: rates over {runs} runs"), &rates)?,
     );
     s.push_str("<h2 id=\"statistics\">Statistics</h2>\n");
     statistics_tables(&mut s, summary);

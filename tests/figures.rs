@@ -69,8 +69,12 @@ fn compare_writes_the_uncertainty_figure() {
         assert!(text(strategy), "{strategy} not in the legend");
     }
     assert!(text("uncertainty radius r (m)") && text("sol"), "axes");
-    // One tick per sol, each once.
-    for sol in 383..=388 {
+    // One label per sol, each once, in the middle of its sol (none past the last sol).
+    assert!(
+        !svg.contains("\n388\n</text>"),
+        "no label for a sol that is not there"
+    );
+    for sol in 383..=387 {
         assert_eq!(
             svg.matches(&format!("\n{sol}\n</text>")).count(),
             1,
@@ -146,21 +150,29 @@ fn compare_writes_maps_metres_and_plan_figures_from_the_run() {
     let r = fault["uncertainty_m"].as_f64().expect("r");
     let map = read("sol383-386.replay.map.svg");
     assert!(
-        map.contains(&format!("keep-outs grown by r = {r:.1} m")),
-        "title names the fault's r {r:.1}"
+        map.contains(&format!("keep-outs grown by r = {r:.2} m")),
+        "title names the fault's r {r:.2}"
     );
     assert!(text(&map, "NO_PATH sol 385"), "the fault is labelled");
     for legend in ["keep-out", "route and waypoints", "fault"] {
         assert!(text(&map, legend), "legend {legend}");
     }
-    // Each drive sol's end is labelled with its sol.
-    for s in replay["sols"].as_array().expect("sols") {
-        if s["drove"].as_bool() == Some(true) {
-            let sol = s["sol"].as_u64().expect("sol");
-            assert!(
-                text(&map, &sol.to_string()),
-                "sol {sol} labelled on the map"
-            );
+    // Drive sols' ends are labelled with their sol where there is room (the first always);
+    // no label names a sol that did not drive.
+    let drove: Vec<u64> = replay["sols"]
+        .as_array()
+        .expect("sols")
+        .iter()
+        .filter(|s| s["drove"].as_bool() == Some(true))
+        .map(|s| s["sol"].as_u64().expect("sol"))
+        .collect();
+    assert!(
+        text(&map, &drove[0].to_string()),
+        "first drive sol labelled"
+    );
+    for sol in 380..400u64 {
+        if text(&map, &sol.to_string()) {
+            assert!(drove.contains(&sol), "sol {sol} labelled but did not drive");
         }
     }
     // Ground never faults here: no fault in its legend, r is its largest end-of-sol r.
@@ -174,8 +186,8 @@ fn compare_writes_maps_metres_and_plan_figures_from_the_run() {
         .filter_map(|s| s["end_uncertainty_m"].as_f64())
         .fold(0.0, f64::max);
     assert!(
-        ground_map.contains(&format!("r = {max_r:.1} m")),
-        "largest r {max_r:.1}"
+        ground_map.contains(&format!("r = {max_r:.2} m")),
+        "largest r {max_r:.2}"
     );
 
     // The onboard plans: a row per planned sol and an HBS row under each sol that ran the
@@ -201,7 +213,9 @@ fn compare_writes_maps_metres_and_plan_figures_from_the_run() {
             "sol {sol} HBS row"
         );
     }
-    assert!(text(&plans, "HBS co-processor chain") && text(&plans, "drive"));
+    assert!(
+        text(&plans, "HBS: image transfer") && text(&plans, "HBS: reboot") && text(&plans, "drive")
+    );
 
     // Metres per sol: one bar per drive sol per strategy (plotters draws each as a <rect> in
     // the strategy's colour; ground is the second colour, #1F77B4).
@@ -231,7 +245,7 @@ fn the_map_grows_the_keep_outs_at_the_asked_r() {
     let out = dir.path().join("a");
     compare_svg_with("scenarios/sol383-386.toml", &out, &["--map-r-m", "10"]);
     let map = std::fs::read_to_string(out.join("sol383-386.onboard.map.svg")).expect("map");
-    assert!(map.contains("keep-outs grown by r = 10.0 m"), "asked r");
+    assert!(map.contains("keep-outs grown by r = 10.00 m"), "asked r");
     for bad in ["-1", "nan", "1e9"] {
         let o = solsim()
             .current_dir(root())
@@ -241,4 +255,112 @@ fn the_map_grows_the_keep_outs_at_the_asked_r() {
             .expect("runs");
         common::assert_bad_input(&o, &["--map-r-m", "metres"]);
     }
+}
+
+/// `(x, y, text)` of every `<text>` of a plotters SVG.
+fn texts(svg: &str) -> Vec<(f64, f64, String)> {
+    svg.split("<text ")
+        .skip(1)
+        .filter_map(|t| {
+            let attr = |name: &str| -> Option<f64> {
+                let at = t
+                    .find(&format!(" {name}=\""))
+                    .or_else(|| t.starts_with(&format!("{name}=\"")).then_some(0))?;
+                let rest = &t[at..];
+                let start = rest.find('"')? + 1;
+                let end = start + rest[start..].find('"')?;
+                rest[start..end].parse().ok()
+            };
+            let body = t
+                .split_once('>')?
+                .1
+                .split("</text>")
+                .next()?
+                .trim()
+                .to_string();
+            Some((attr("x")?, attr("y")?, body))
+        })
+        .collect()
+}
+
+/// Pixels per unit along an axis from its tick labels (numbers), and the labels' shared
+/// coordinate: x-axis labels share y, y-axis labels share x.
+fn axis_scale(labels: &[(f64, f64)]) -> f64 {
+    let (a, b) = (
+        labels.first().expect("ticks"),
+        labels.last().expect("ticks"),
+    );
+    ((b.1 - a.1) / (b.0 - a.0)).abs()
+}
+
+#[test]
+fn maps_have_equal_scale_and_gantt_bars_sit_at_their_lmst() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("a");
+    compare_svg("scenarios/sol383-386.toml", &out);
+    let read = |n: &str| std::fs::read_to_string(out.join(n)).expect("figure");
+    for name in [
+        "sol383-386.ground.map.svg",
+        "sol383-386.replay.fault-sol385.map.svg",
+    ] {
+        let t = texts(&read(name));
+        let numeric: Vec<(f64, f64, f64)> = t
+            .iter()
+            .filter_map(|(x, y, s)| s.parse::<f64>().ok().map(|v| (*x, *y, v)))
+            .collect();
+        // x-axis ticks: the numbers on the lowest row; y-axis ticks: on the leftmost column.
+        let bottom = numeric.iter().map(|n| n.1).fold(f64::MIN, f64::max);
+        let left = numeric.iter().map(|n| n.0).fold(f64::MAX, f64::min);
+        let xs: Vec<(f64, f64)> = numeric
+            .iter()
+            .filter(|n| (n.1 - bottom).abs() < 0.5)
+            .map(|n| (n.2, n.0))
+            .collect();
+        let ys: Vec<(f64, f64)> = numeric
+            .iter()
+            .filter(|n| (n.0 - left).abs() < 0.5)
+            .map(|n| (n.2, n.1))
+            .collect();
+        assert!(xs.len() >= 3 && ys.len() >= 3, "{name}: {xs:?} {ys:?}");
+        let (sx, sy) = (axis_scale(&xs), axis_scale(&ys));
+        assert!(
+            (sx / sy - 1.0).abs() < 0.01,
+            "{name}: {sx:.4} px/m east against {sy:.4} px/m north"
+        );
+    }
+    // The onboard plans: sol 383's heating starts at 11:01 LMST (its JSON); on the chart its
+    // bar's left edge lies at 11:01 between the 11:00 and 12:00 ticks (a Mars hour is
+    // 3698.96 s, not 3600).
+    let onboard = run_doc(&out, "sol383-386.onboard.json");
+    let heating = onboard["sols"][0]["activity_plan"]["timeline"]
+        .as_array()
+        .expect("timeline")
+        .iter()
+        .find(|t| t["activity"] == "heating")
+        .expect("heating")
+        .clone();
+    let start = heating["start_lmst"].as_str().expect("LMST");
+    let (h, m) = start.split_once(':').expect("HH:MM");
+    let hours: f64 = h.parse::<f64>().expect("h") + m.parse::<f64>().expect("m") / 60.0;
+    let svg = read("sol383-386.onboard.plans.svg");
+    let t = texts(&svg);
+    let tick = |label: &str| {
+        t.iter()
+            .find(|(_, _, s)| s == label)
+            .map(|(x, _, _)| *x)
+            .unwrap_or_else(|| panic!("tick {label}"))
+    };
+    let (x11, x12) = (tick("11:00"), tick("12:00"));
+    let bar_x: f64 = svg
+        .split("<rect ")
+        .find(|r| r.contains("fill=\"#D62728\""))
+        .and_then(|r| r.split("x=\"").nth(1))
+        .and_then(|r| r.split('"').next())
+        .and_then(|x| x.parse().ok())
+        .expect("the first heating bar");
+    let drawn = 11.0 + (bar_x - x11) / (x12 - x11);
+    assert!(
+        (drawn - hours).abs() < 1.5 / 60.0,
+        "heating drawn at {drawn:.3} h, starts at {start} ({hours:.3} h)"
+    );
 }

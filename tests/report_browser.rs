@@ -68,7 +68,7 @@ fn the_sol383_386_report_renders_in_chromium() {
         &["compare", "scenarios/sol383-386.toml", "--report", "--out"],
         &[&run],
     );
-    let Some(page) = check_report(&run.join("report.html"), 12) else {
+    let Some(page) = check_report(&run.join("report.html"), 13) else {
         return;
     };
     // The first figures (uncertainty per sol, metres per sol) are on screen: the strategies'
@@ -106,10 +106,9 @@ fn a_sweep_report_renders_in_chromium() {
     let Some(page) = check_report(&out.join("report.html"), 2) else {
         return;
     };
-    // The CDF and the rates figure are drawn in the strategies' colours (ground is the first
-    // strategy of the sweep: grey; onboard the third colour... whichever order, the first
-    // two colours of the palette are drawn).
-    let drawn: usize = [[90, 90, 90], [31, 119, 180]]
+    // The CDF and the rates figure are drawn in the strategies' colours (ground blue,
+    // onboard green).
+    let drawn: usize = [[31, 119, 180], [44, 160, 44]]
         .iter()
         .map(|&rgb| pixels_of(&page.screenshot_png, rgb))
         .sum();

@@ -66,7 +66,8 @@ fn compare_report_and_report_of_the_directory_are_the_same_page() {
         .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
         .filter(|n| n.ends_with(".svg"))
         .collect();
-    assert_eq!(svgs.len(), 12, "{svgs:?}");
+    // Uncertainty and metres; per strategy a map and the plans; the replay's sol-385 zoom.
+    assert_eq!(svgs.len(), 13, "{svgs:?}");
     assert_eq!(html.matches("<figure").count(), svgs.len());
     assert_eq!(html.matches("<svg").count(), svgs.len());
     for n in &svgs {
@@ -97,7 +98,7 @@ fn compare_report_and_report_of_the_directory_are_the_same_page() {
     // regenerated from the scenario and checked against the directory first).
     let again = dir.path().join("report");
     let stdout = ok(&["report"], &[&run, Path::new("--out"), &again]);
-    assert!(stdout.contains("12 figures inline"), "{stdout}");
+    assert!(stdout.contains("13 figures inline"), "{stdout}");
     assert_eq!(read(&again.join("report.html")), html);
 }
 
@@ -136,8 +137,86 @@ fn report_refuses_a_directory_the_scenario_no_longer_gives() {
     std::fs::create_dir(&empty).expect("mkdir");
     assert_bad_input(&report(&empty, &[]), &["empty", "found neither"]);
     assert_bad_input(&report(&dir.path().join("missing"), &[]), &["missing"]);
+    // A zones file edited since the run (the scenario itself unchanged): named.
+    let zones_dir = tempfile::tempdir().expect("tempdir");
+    let zones_copy = zones_dir.path().join("zones.geojson");
+    let zones_text = read(&root().join("scenarios/sol383-386.zones.geojson"));
+    std::fs::write(&zones_copy, zones_text.replacen("[", "[ ", 1)).expect("write");
+    let (moved, _keep2) = common::scenario_copy("sol383-386.toml", |t| {
+        common::replace_line(
+            &t,
+            "zones = ",
+            &format!("zones = \"{}\"", zones_copy.display()),
+        )
+    });
+    // (Its own SHA-256 differs too, so the run's scenario check is skipped by giving the run's
+    // recorded one: rewrite the run's provenance to the copy's.)
+    let copy_sha = {
+        let o = solsim()
+            .args(["compare", "--json", "--no-files"])
+            .arg(&moved)
+            .output()
+            .expect("runs");
+        let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+        v[0]["provenance"]["scenario_sha256"]
+            .as_str()
+            .expect("sha")
+            .to_string()
+    };
+    let edited_run = dir.path().join("edited-run");
+    std::fs::create_dir(&edited_run).expect("mkdir");
+    for e in std::fs::read_dir(&run).expect("list") {
+        let p = e.expect("entry").path();
+        if p.extension().is_some_and(|x| x == "json") {
+            let t = read(&p);
+            let sha = serde_json::from_str::<serde_json::Value>(&t).expect("JSON")["provenance"]
+                ["scenario_sha256"]
+                .as_str()
+                .expect("sha")
+                .to_string();
+            std::fs::write(
+                edited_run.join(p.file_name().expect("name")),
+                t.replace(&sha, &copy_sha),
+            )
+            .expect("write");
+        }
+    }
+    let o = report(&edited_run, &["--scenario", moved.to_str().expect("utf-8")]);
+    assert_bad_input(&o, &["zones.geojson", "map.zones", "edited since the run"]);
+    // Two documents for one strategy, and a JSON that is not a run document.
+    let twin = dir.path().join("twin");
+    std::fs::create_dir(&twin).expect("mkdir");
+    std::fs::copy(&ground, twin.join("a.json")).expect("copy");
+    std::fs::copy(&ground, twin.join("b.json")).expect("copy");
+    assert_bad_input(&report(&twin, &[]), &["b.json", "second for ground"]);
+    std::fs::write(twin.join("b.json"), "[1, 2]").expect("write");
+    assert_bad_input(&report(&twin, &[]), &["b.json", "JSON object"]);
     // Nothing was written by the refused runs.
     assert!(!out.exists());
+    // --out may not be the run directory (replacing it would lose the run), nor any directory
+    // holding other files.
+    let o = solsim()
+        .current_dir(root())
+        .arg("report")
+        .arg(&run)
+        .arg("--out")
+        .arg(&run)
+        .output()
+        .expect("runs");
+    assert_bad_input(&o, &["--out", "directory reported on"]);
+    let o = solsim()
+        .current_dir(root())
+        .arg("report")
+        .arg(&run)
+        .arg("--out")
+        .arg(&twin)
+        .output()
+        .expect("runs");
+    assert_bad_input(&o, &["--out", "other files"]);
+    assert!(
+        run.join("sol383-386.ground.json").is_file(),
+        "the run is intact"
+    );
     // And it works again on the restored directory.
     let o = report(&run, &[]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
@@ -220,7 +299,17 @@ fn a_sweep_directory_is_reported_and_a_changed_one_refused() {
     // The CDF names every strategy with its run count.
     assert!(html.contains("sols to cover the study segment"));
     for s in ["ground", "onboard", "extension", "extension+onboard"] {
-        assert!(html.contains(&format!("\n{s} (")), "{s} in the CDF legend");
+        assert!(
+            html.contains(&format!("\n{s} (")) || html.contains(&format!("\n{s}: ")),
+            "{s} in the CDF legend"
+        );
+    }
+    // The rates figure names its groups (as text in the SVG, not only in the table).
+    for rate in ["no_path_rate", "fault_rate", "goal_reached_rate"] {
+        assert!(
+            html.contains(&format!("\n{rate}\n</text>")),
+            "{rate} in the figure"
+        );
     }
     // Deterministic.
     let out2 = dir.path().join("report2");
@@ -239,4 +328,31 @@ fn a_sweep_directory_is_reported_and_a_changed_one_refused() {
         .output()
         .expect("runs");
     assert_bad_input(&o, &["summary.json", "changed file"]);
+}
+
+#[test]
+fn a_shard_is_reported_as_the_shard() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let shard = dir.path().join("shard");
+    ok(
+        &[
+            "sweep",
+            "scenarios/rapid-traverse-379-409.toml",
+            "--runs",
+            "20",
+            "--shard",
+            "1/2",
+            "-q",
+            "--out",
+        ],
+        &[&shard],
+    );
+    let out = dir.path().join("report");
+    let stdout = ok(&["report"], &[&shard, Path::new("--out"), &out]);
+    assert!(
+        stdout.contains("shard 1 of 2 (runs 10..20 of a sweep of 20)"),
+        "{stdout}"
+    );
+    let html = read(&out.join("report.html"));
+    assert!(html.contains("rates over 10 runs"), "the shard's 10 runs");
 }

@@ -214,6 +214,10 @@ pub struct Scenario {
     /// PNG, a file without a Mars CRS, or a map placed by `map.origin_m`, which overrides the
     /// file's georeference).
     pub map_crs: maps::MapCrs,
+    /// Each file the scenario reads besides itself — field (`map.appearance`, `map.dem`,
+    /// `map.terrain`, `map.zones`), path, SHA-256 (hex) — so an output can name the exact
+    /// inputs it came from.
+    pub inputs_sha256: Vec<(&'static str, PathBuf, String)>,
 }
 
 fn per_terrain(
@@ -1104,6 +1108,24 @@ impl Scenario {
             ));
         }
         let layers = Arc::new(layers);
+        let mut inputs_sha256 = Vec::new();
+        for (field, p) in [
+            ("map.appearance", &m.appearance),
+            ("map.dem", &m.dem),
+            ("map.terrain", &m.terrain),
+            ("map.zones", &m.zones),
+        ] {
+            // Read already (and within the budget) to build the layers and zones.
+            let bytes = std::fs::read(p).map_err(|e| {
+                ScenarioError::field(
+                    path,
+                    field,
+                    "a readable file",
+                    format!("{} ({e})", p.display()),
+                )
+            })?;
+            inputs_sha256.push((field, p.clone(), crate::input::sha256_hex(&bytes)));
+        }
         let mut localizer = match spec.localizer {
             LocalizerSpec::Statistical(statistical) => OnboardLocalizer::Statistical(statistical),
             LocalizerSpec::Imagery {
@@ -1156,6 +1178,7 @@ impl Scenario {
             zones: Arc::new(zones),
             legs,
             map_crs,
+            inputs_sha256,
         })
     }
 

@@ -745,6 +745,8 @@ fn assemble(
 pub struct CompletedSweep {
     /// `manifest.json`.
     pub manifest: Manifest,
+    /// The runs this directory holds: all of the sweep's, or its shard's.
+    pub runs_here: u64,
     /// `runs.parquet`, in run order.
     pub rows: Vec<RunRow>,
     /// The statistics of `rows` (as `summary.json` holds them).
@@ -756,9 +758,11 @@ pub struct CompletedSweep {
 /// recomputed from the rows must be the one on disk — so a report never shows numbers the
 /// rows do not give.
 ///
+/// A shard directory is read as what it is, the shard's runs (see [`Manifest::shard`]).
+///
 /// # Errors
-/// No manifest; a sweep still running (or a shard directory not merged); a file missing,
-/// changed since the sweep wrote it, or not a solsim table.
+/// No manifest; a sweep still running; a file missing, changed since the sweep wrote it, or
+/// not a solsim table.
 pub fn read_complete(dir: &Path) -> Result<CompletedSweep, SweepError> {
     let path = dir.join(MANIFEST);
     let manifest = Manifest::read(dir)?
@@ -807,8 +811,12 @@ pub fn read_complete(dir: &Path) -> Result<CompletedSweep, SweepError> {
             ),
         ));
     }
+    let runs_here = manifest
+        .shard
+        .map_or(manifest.runs, |sh| sh.end_run - sh.first_run);
     Ok(CompletedSweep {
         manifest,
+        runs_here,
         rows,
         summary,
     })
