@@ -10,17 +10,7 @@ mod common;
 use std::path::Path;
 
 use common::browser::check_page;
-use common::{root, solsim, stderr};
-
-fn ok(args: &[&str], paths: &[&Path]) {
-    let o = solsim()
-        .current_dir(root())
-        .args(args)
-        .args(paths)
-        .output()
-        .expect("runs");
-    assert_eq!(o.status.code(), Some(0), "{args:?}: {}", stderr(&o));
-}
+use common::run_ok;
 
 /// Pixels of exactly `rgb` in the screenshot.
 fn pixels_of(png: &Path, rgb: [u8; 3]) -> usize {
@@ -64,7 +54,7 @@ fn check_report(html: &Path, figures: usize) -> Option<common::browser::PageChec
 fn the_sol383_386_report_renders_in_chromium() {
     let dir = tempfile::tempdir().expect("tempdir");
     let run = dir.path().join("run");
-    ok(
+    run_ok(
         &["compare", "scenarios/sol383-386.toml", "--report", "--out"],
         &[&run],
     );
@@ -90,19 +80,9 @@ fn the_sol383_386_report_renders_in_chromium() {
 fn a_sweep_report_renders_in_chromium() {
     let dir = tempfile::tempdir().expect("tempdir");
     let sweep = dir.path().join("sweep");
-    ok(
-        &[
-            "sweep",
-            "scenarios/rapid-traverse-379-409.toml",
-            "--runs",
-            "30",
-            "-q",
-            "--out",
-        ],
-        &[&sweep],
-    );
+    common::sweep_rapid_traverse(30, &sweep);
     let out = dir.path().join("report");
-    ok(&["report"], &[&sweep, Path::new("--out"), &out]);
+    run_ok(&["report"], &[&sweep, Path::new("--out"), &out]);
     let Some(page) = check_report(&out.join("report.html"), 2) else {
         return;
     };

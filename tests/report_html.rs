@@ -8,18 +8,7 @@ mod common;
 
 use std::path::Path;
 
-use common::{assert_bad_input, root, solsim, stderr};
-
-fn ok(args: &[&str], paths: &[&Path]) -> String {
-    let o = solsim()
-        .current_dir(root())
-        .args(args)
-        .args(paths)
-        .output()
-        .expect("runs");
-    assert_eq!(o.status.code(), Some(0), "{args:?}: {}", stderr(&o));
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
+use common::{assert_bad_input, root, run_ok, solsim, stderr};
 
 fn read(p: &Path) -> String {
     std::fs::read_to_string(p).expect("readable")
@@ -50,7 +39,7 @@ fn assert_self_contained(html: &str) {
 fn compare_report_and_report_of_the_directory_are_the_same_page() {
     let dir = tempfile::tempdir().expect("tempdir");
     let run = dir.path().join("run");
-    let stdout = ok(
+    let stdout = run_ok(
         &["compare", "scenarios/sol383-386.toml", "--report", "--out"],
         &[&run],
     );
@@ -97,7 +86,7 @@ fn compare_report_and_report_of_the_directory_are_the_same_page() {
     // `solsim report` on the directory gives the same page, byte for byte (the run is
     // regenerated from the scenario and checked against the directory first).
     let again = dir.path().join("report");
-    let stdout = ok(&["report"], &[&run, Path::new("--out"), &again]);
+    let stdout = run_ok(&["report"], &[&run, Path::new("--out"), &again]);
     assert!(stdout.contains("13 figures inline"), "{stdout}");
     assert_eq!(read(&again.join("report.html")), html);
 }
@@ -106,7 +95,7 @@ fn compare_report_and_report_of_the_directory_are_the_same_page() {
 fn report_refuses_a_directory_the_scenario_no_longer_gives() {
     let dir = tempfile::tempdir().expect("tempdir");
     let run = dir.path().join("run");
-    ok(&["compare", "scenarios/sol383-386.toml", "--out"], &[&run]);
+    run_ok(&["compare", "scenarios/sol383-386.toml", "--out"], &[&run]);
     let out = dir.path().join("report");
     let report = |d: &Path, extra: &[&str]| {
         solsim()
@@ -227,7 +216,7 @@ fn report_refuses_a_directory_the_scenario_no_longer_gives() {
 fn a_compare_over_runs_is_reported_with_its_statistics() {
     let dir = tempfile::tempdir().expect("tempdir");
     let run = dir.path().join("run");
-    ok(
+    run_ok(
         &[
             "compare",
             "scenarios/rapid-traverse-379-409.toml",
@@ -244,7 +233,7 @@ fn a_compare_over_runs_is_reported_with_its_statistics() {
     assert!(html.contains("Over 20 seeded worlds"));
     assert!(html.contains("no_path_rate"), "rates table");
     let again = dir.path().join("report");
-    ok(&["report"], &[&run, Path::new("--out"), &again]);
+    run_ok(&["report"], &[&run, Path::new("--out"), &again]);
     assert_eq!(read(&again.join("report.html")), html);
 }
 
@@ -252,19 +241,9 @@ fn a_compare_over_runs_is_reported_with_its_statistics() {
 fn a_sweep_directory_is_reported_and_a_changed_one_refused() {
     let dir = tempfile::tempdir().expect("tempdir");
     let sweep = dir.path().join("sweep");
-    ok(
-        &[
-            "sweep",
-            "scenarios/rapid-traverse-379-409.toml",
-            "--runs",
-            "30",
-            "-q",
-            "--out",
-        ],
-        &[&sweep],
-    );
+    common::sweep_rapid_traverse(30, &sweep);
     let out = dir.path().join("report");
-    let stdout = ok(&["report"], &[&sweep, Path::new("--out"), &out]);
+    let stdout = run_ok(&["report"], &[&sweep, Path::new("--out"), &out]);
     assert!(
         stdout.contains("sweep of 30 runs; 2 figures inline"),
         "{stdout}"
@@ -313,7 +292,7 @@ fn a_sweep_directory_is_reported_and_a_changed_one_refused() {
     }
     // Deterministic.
     let out2 = dir.path().join("report2");
-    ok(&["report"], &[&sweep, Path::new("--out"), &out2]);
+    run_ok(&["report"], &[&sweep, Path::new("--out"), &out2]);
     assert_eq!(read(&out2.join("report.html")), html);
 
     // summary.json edited: refused, naming the file.
@@ -334,7 +313,7 @@ fn a_sweep_directory_is_reported_and_a_changed_one_refused() {
 fn a_shard_is_reported_as_the_shard() {
     let dir = tempfile::tempdir().expect("tempdir");
     let shard = dir.path().join("shard");
-    ok(
+    run_ok(
         &[
             "sweep",
             "scenarios/rapid-traverse-379-409.toml",
@@ -348,7 +327,7 @@ fn a_shard_is_reported_as_the_shard() {
         &[&shard],
     );
     let out = dir.path().join("report");
-    let stdout = ok(&["report"], &[&shard, Path::new("--out"), &out]);
+    let stdout = run_ok(&["report"], &[&shard, Path::new("--out"), &out]);
     assert!(
         stdout.contains("shard 1 of 2 (runs 10..20 of a sweep of 20)"),
         "{stdout}"

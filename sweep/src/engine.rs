@@ -690,6 +690,17 @@ fn summarise(rows: &[RunRow], manifest: &Manifest) -> Summary {
     }
 }
 
+/// `summary.json`'s text for `summary` (pretty JSON and a newline).
+fn summary_text(summary: &Summary, dir: &Path) -> Result<String, SweepError> {
+    let mut text = serde_json::to_string_pretty(summary).map_err(|e| SweepError::Io {
+        path: dir.join("summary.json"),
+        what: "cannot serialise".into(),
+        message: e.to_string(),
+    })?;
+    text.push('\n');
+    Ok(text)
+}
+
 /// Writes `runs.parquet`, `sols.parquet`, `summary.json` and the complete manifest from the
 /// `(runs, sols)` table pairs in `sources`, given in run order.
 fn assemble(
@@ -723,12 +734,7 @@ fn assemble(
     }
     w.finish()?;
     let summary = summarise(&all_runs, &manifest);
-    let mut text = serde_json::to_string_pretty(&summary).map_err(|e| SweepError::Io {
-        path: dir.join("summary.json"),
-        what: "cannot serialise".into(),
-        message: e.to_string(),
-    })?;
-    text.push('\n');
+    let text = summary_text(&summary, dir)?;
     write_durably(&dir.join("summary.json"), text.as_bytes())?;
     for name in ["runs.parquet", "sols.parquet", "summary.json"] {
         manifest
@@ -792,12 +798,7 @@ pub fn read_complete(dir: &Path) -> Result<CompletedSweep, SweepError> {
     }
     let rows = read_run_rows(&dir.join("runs.parquet"))?;
     let summary = summarise(&rows, &manifest);
-    let mut text = serde_json::to_string_pretty(&summary).map_err(|e| SweepError::Io {
-        path: dir.join("summary.json"),
-        what: "cannot serialise".into(),
-        message: e.to_string(),
-    })?;
-    text.push('\n');
+    let text = summary_text(&summary, dir)?;
     let on_disk = std::fs::read(dir.join("summary.json"))
         .map_err(|e| io(&dir.join("summary.json"), "cannot read", e))?;
     if on_disk != text.as_bytes() {

@@ -152,3 +152,30 @@ pub fn peers_python(skipped: &str) -> Option<PathBuf> {
     );
     None
 }
+
+/// Runs solsim from the repository with `args` then `paths`, asserts exit 0, returns stdout.
+pub fn run_ok(args: &[&str], paths: &[&std::path::Path]) -> String {
+    let o = solsim()
+        .current_dir(root())
+        .args(args)
+        .args(paths)
+        .output()
+        .expect("runs");
+    assert_eq!(o.status.code(), Some(0), "{args:?}: {}", stderr(&o));
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// A sweep of the rapid traverse over `runs` runs into `out` (quiet).
+pub fn sweep_rapid_traverse(runs: u32, out: &std::path::Path) {
+    run_ok(
+        &[
+            "sweep",
+            "scenarios/rapid-traverse-379-409.toml",
+            "--runs",
+            &runs.to_string(),
+            "-q",
+            "--out",
+        ],
+        &[out],
+    );
+}
