@@ -1,4 +1,4 @@
-//! # localization — onboard global localization (paper 000 §4-§7)
+//! # localization — onboard global localization (paper 000 §4-§7) and the filters of papers 002 and 004
 //!
 //! - [`census`]: the modified census transform (8 bits per pixel, per-bit validity) and the exact
 //!   masked Hamming score of every offset in the search window.
@@ -7,13 +7,21 @@
 //!   injected radiation upsets that must be caught and never applied.
 //! - [`onboard`]: the whole activity as the simulator runs it after a drive — imaging at the
 //!   true position, the matcher from the estimate, through the co-processor model.
+//! - [`particle`]: the particle filter of paper 002 — odometry motion with the 5 %/50 % growth,
+//!   census-score likelihoods of a sequence of panoramas, systematic or KLD resampling, the
+//!   posterior as an ellipse; it resolves perceptual aliasing the single-shot matcher rejects.
+//! - [`ekf`]: the extended Kalman filter of paper 004 — IMU propagation (RK4) with biases,
+//!   radio ranges to a two-body orbiter with Mars rotation, terrain-matching fixes; the four
+//!   Table 1 cases (`examples/ekf_table1.rs`), checked against filterpy (`tests/ekf_filterpy.rs`).
 #![warn(missing_docs)]
 
 pub mod baselines;
 pub mod benchmark_set;
 pub mod census;
 mod dem_score;
+pub mod ekf;
 pub mod hbs;
 pub mod matcher;
 pub mod onboard;
+pub mod particle;
 pub mod synthetic;

@@ -8,11 +8,15 @@
 //!    appearance score of every 25 cm offset is computed by the [`Method`] of [`MatchParams`]:
 //!    by default both are census-transformed and
 //!    [`hamming_scores`](crate::census::hamming_scores) scores every offset exactly;
-//!    the baselines of paper 000 §4 are masked NCC ([`ncc_scores`], `1 − ncc`) and mutual
-//!    information ([`mi_scores`], scored `1 − MI / H(T)`, see [`Method::MutualInformation`]).
+//!    the baselines of paper 000 §4 are masked NCC
+//!    ([`ncc_scores`](crate::baselines::ncc_scores), `1 − ncc`) and mutual information
+//!    ([`mi_scores`](crate::baselines::mi_scores), scored `1 − MI / H(T)`, see
+//!    [`Method::MutualInformation`]).
 //! 3. With DEMs, the mean-removed sum of squared height differences per valid cell is computed at
 //!    every 1 m offset, mapped to `[0, 1)` as `msd / (msd + dem_scale²)` and interpolated onto the
-//!    appearance offsets; the two are summed with appearance weighted more.
+//!    appearance offsets; the two are summed with appearance weighted more. Steps 1-3 are
+//!    [`score_surface`], public for callers that want the whole [`ScoreSurface`] (the particle
+//!    filter of [`crate::particle`] reads it at each particle).
 //! 4. The best offset is refined to sub-pixel by the quadratic fit of [`subpixel_peak`].
 //! 5. Confidence: σ from the fitted curvature and the noise of the best score (census: binomial
 //!    noise of the fraction of disagreeing bits, one independent sample per
@@ -29,8 +33,11 @@
 
 use maps::Raster;
 
-use crate::baselines::{mi_scores, ncc_scores, template_entropy};
-use crate::census::{MatchError, ScoreMap, census_transform_raster, subpixel_peak};
+use crate::census::{MatchError, subpixel_peak};
+
+mod surface;
+
+pub use surface::{ScoreSurface, score_surface};
 
 /// Latitude of true scale of the Jezero orbital maps, degrees (paper 000 §5).
 pub const JEZERO_TRUE_SCALE_LATITUDE_DEG: f64 = 18.4663;
@@ -57,12 +64,13 @@ pub enum Method {
     #[serde(rename = "census")]
     Census,
     /// Masked zero-mean normalized cross-correlation, scored `1 − ncc` in `[0, 2]`
-    /// ([`ncc_scores`]). The binomial model does not apply: the score noise for σ is estimated
-    /// from the residual of the 3×3 quadratic fit (residual sum of squares ÷ 3 degrees of
-    /// freedom), floored like census at `1/√12` px.
+    /// ([`ncc_scores`](crate::baselines::ncc_scores)). The binomial model does not apply: the
+    /// score noise for σ is estimated from the residual of the 3×3 quadratic fit (residual sum
+    /// of squares ÷ 3 degrees of freedom), floored like census at `1/√12` px.
     #[serde(rename = "ncc")]
     Ncc,
-    /// Mutual information of rank-quantized intensities ([`mi_scores`]), scored
+    /// Mutual information of rank-quantized intensities
+    /// ([`mi_scores`](crate::baselines::mi_scores)), scored
     /// `1 − MI / H(T)` in `[0, 1]` — the fraction of the template's (constant) entropy the map
     /// does not explain; the same minimum as `−MI`, but positive so the peak ratio keeps its
     /// meaning. σ as for [`Method::Ncc`]. MI is evaluated exactly on a 2× subsampled offset grid
@@ -303,41 +311,6 @@ pub enum LocalizeError {
     Census(#[from] MatchError),
 }
 
-/// Resample `ortho` in x by `scale` (map metres per ground metre) about its centre, nearest
-/// neighbour, keeping its size; pixels that fall outside become invalid.
-fn rescale_easting(ortho: &Raster<u8>, valid: &[bool], scale: f64) -> (Raster<u8>, Vec<bool>) {
-    if (scale - 1.0).abs() < 1e-12 {
-        return (ortho.clone(), valid.to_vec());
-    }
-    let (w, h) = (ortho.width, ortho.height);
-    let cx = w as f64 / 2.0;
-    let mut out = Raster::filled(w, h, ortho.geo, 0u8);
-    let mut out_valid = vec![false; w * h];
-    for row in 0..h {
-        for col in 0..w {
-            let src = ((col as f64 + 0.5 - cx) / scale + cx - 0.5).round();
-            if src >= 0.0 && (src as usize) < w {
-                let i = row * w + src as usize;
-                out.data[row * w + col] = ortho.data[i];
-                out_valid[row * w + col] = valid[i];
-            }
-        }
-    }
-    (out, out_valid)
-}
-
-/// Census appearance scores of the (rescaled) orthomosaic at every offset inside `window`.
-fn census_scores(
-    window: &Raster<u8>,
-    ortho: &Raster<u8>,
-    ortho_valid: &[bool],
-) -> Result<ScoreMap, LocalizeError> {
-    let map_census = census_transform_raster(window, &vec![true; window.width * window.height])?;
-    let template = census_transform_raster(ortho, ortho_valid)?;
-    let scores = crate::census::hamming_scores_fft(&template, &map_census)?;
-    Ok(scores)
-}
-
 /// Score noise (variance) from the residual of the least-squares quadratic over the 3×3
 /// neighbourhood of `(bx, by)` (6 parameters, 9 points: residual sum of squares ÷ 3). The basis
 /// `1, x, y, x² − ⅔, xy, y² − ⅔` is orthogonal on that grid, so each coefficient is a projection.
@@ -374,97 +347,18 @@ pub fn localize(
     prior_m: [f64; 2],
     p: &MatchParams,
 ) -> Result<MatchResult, LocalizeError> {
-    let map = orbital.appearance;
-    let res = map.geo.resolution_m_per_px;
-    if (rover.ortho.geo.resolution_m_per_px - res).abs() > 1e-9 {
-        return Err(LocalizeError::ResolutionMismatch {
-            ortho: rover.ortho.geo.resolution_m_per_px,
-            map: res,
-        });
-    }
-    let valid_fraction = rover.ortho_valid.iter().filter(|&&v| v).count() as f64
-        / rover.ortho_valid.len().max(1) as f64;
-    if valid_fraction == 0.0 {
-        return Err(LocalizeError::NoValidPixels);
-    }
-    let (ortho, ortho_valid) = rescale_easting(
-        rover.ortho,
-        rover.ortho_valid,
-        easting_scale(p.latitude_deg, p.true_scale_latitude_deg),
-    );
-    let (tw, th) = (ortho.width, ortho.height);
-    let radius_px = (p.search_radius_m / res).ceil() as usize;
-    // The template's north-west corner sits at the prior minus half the template.
-    let (pc, pr) = map.geo.pixel_of(prior_m[0], prior_m[1]);
-    let c0 = pc - tw as f64 / 2.0 - radius_px as f64;
-    let r0 = pr - th as f64 / 2.0 - radius_px as f64;
-    let (cols, rows) = (tw + 2 * radius_px, th + 2 * radius_px);
-    let off_map = || LocalizeError::WindowOffMap {
+    let surface = score_surface(
+        orbital,
+        rover,
         prior_m,
-        radius_m: p.search_radius_m,
-    };
-    if !(c0 >= 0.0 && r0 >= 0.0) {
-        return Err(off_map());
-    }
-    let window = map
-        .try_crop(c0.round() as usize, r0.round() as usize, cols, rows)
-        .ok_or_else(off_map)?;
-    // Appearance score per offset (lower is better) and, for census, the valid bits per offset.
-    let (sw, sh, appearance, census_bits) = match p.method {
-        Method::Census => {
-            let scores = census_scores(&window, &ortho, &ortho_valid)?;
-            let normalized = scores.normalized_scores();
-            (scores.width, scores.height, normalized, Some(scores.valid))
-        }
-        Method::Ncc => {
-            let s = ncc_scores(&ortho.data, &ortho_valid, tw, th, &window.data, cols, rows)?;
-            (s.width, s.height, s.scores, None)
-        }
-        Method::MutualInformation => {
-            let s = mi_scores(&ortho.data, &ortho_valid, tw, th, &window.data, cols, rows)?;
-            let h = template_entropy(&ortho.data, &ortho_valid);
-            let scores = s
-                .scores
-                .iter()
-                .map(|&neg_mi| if h > 0.0 { 1.0 + neg_mi / h } else { 1.0 })
-                .collect();
-            (s.width, s.height, scores, None)
-        }
-    };
-    let mut combined: Vec<f64> = appearance.iter().map(|s| p.appearance_weight * s).collect();
-
-    if let (Some((rdem, rvalid)), Some(mdem)) = (rover.dem, orbital.dem) {
-        let dres = mdem.geo.resolution_m_per_px;
-        let k = (dres / res).round().max(1.0) as usize;
-        // The DEM window covering the appearance window (whole DEM cells).
-        let (x0, y0) = window.geo.center_of(0, 0);
-        let (dc, dr) = mdem.geo.pixel_of(x0, y0);
-        let (dc0, dr0) = (dc.floor() as isize, dr.floor() as isize);
-        let dcols = rdem.width + 2 * (radius_px / k) + 2;
-        let drows = rdem.height + 2 * (radius_px / k) + 2;
-        if dc0 >= 0
-            && dr0 >= 0
-            && let Some(dwin) = mdem.try_crop(dc0 as usize, dr0 as usize, dcols, drows)
-        {
-            let (ow, oh, ds) = crate::dem_score::dem_scores(rdem, rvalid, &dwin, p.dem_scale_m);
-            // Appearance offset (ax, ay) puts the template's NW corner at window pixel (ax, ay);
-            // the rover DEM's NW corner is the template's (both centred on the rover).
-            let (tx0, ty0) = (window.geo.origin_m[0], window.geo.origin_m[1]);
-            let (rx_off, ry_off) = (
-                (tw as f64 * res - rdem.width as f64 * dres) / 2.0,
-                (th as f64 * res - rdem.height as f64 * dres) / 2.0,
-            );
-            for ay in 0..sh {
-                for ax in 0..sw {
-                    let x = tx0 + ax as f64 * res + rx_off;
-                    let y = ty0 - ay as f64 * res - ry_off;
-                    let fx = (x - dwin.geo.origin_m[0]) / dres;
-                    let fy = (dwin.geo.origin_m[1] - y) / dres;
-                    combined[ay * sw + ax] += p.dem_weight * bilinear(&ds, ow, oh, fx, fy);
-                }
-            }
-        }
-    }
+        [p.search_radius_m, p.search_radius_m],
+        p,
+    )?;
+    let (sw, sh) = (surface.width, surface.height);
+    let res = surface.resolution_m_per_px;
+    let valid_fraction = surface.valid_fraction;
+    let combined = surface.scores.as_slice();
+    let census_bits = surface.census_valid_bits.as_ref();
 
     let best = (0..combined.len())
         .filter(|&i| combined[i].is_finite())
@@ -472,7 +366,7 @@ pub fn localize(
         .ok_or(LocalizeError::NoValidPixels)?;
     let (bx, by) = (best % sw, best / sw);
     let best_score = combined[best];
-    let (fx, fy, sigma_px) = match subpixel_peak(&combined, sw, sh, (bx, by)) {
+    let (fx, fy, sigma_px) = match subpixel_peak(combined, sw, sh, (bx, by)) {
         Some((dx, dy, curv)) => {
             // Census: binomial noise of a fraction of disagreeing bits; NCC / MI: the residual
             // of the quadratic fit. Propagated through the fitted bowl:
@@ -487,7 +381,7 @@ pub fn localize(
                     let s = best_score.clamp(1e-6, 1.0 - 1e-6);
                     s * (1.0 - s) / samples
                 }
-                None => quadratic_residual_variance(&combined, sw, (bx, by)),
+                None => quadratic_residual_variance(combined, sw, (bx, by)),
             };
             let tr = curv.f_xx + curv.f_yy;
             let det = curv.determinant();
@@ -541,9 +435,7 @@ pub fn localize(
 
     // Offset (bx, by) puts the template NW corner at window pixel (bx, by): the rover (template
     // centre) is at that pixel's corner + half the template.
-    let (wx0, wy0) = (window.geo.origin_m[0], window.geo.origin_m[1]);
-    let x = wx0 + (bx as f64 + fx) * res + tw as f64 * res / 2.0;
-    let y = wy0 - (by as f64 + fy) * res - th as f64 * res / 2.0;
+    let [x, y] = surface.position_m(bx as f64 + fx, by as f64 + fy);
     let sigma_m = sigma_px * res;
     let rejection = if valid_fraction < p.min_valid_fraction {
         Some(Rejection::TooFewValid {
@@ -572,19 +464,6 @@ pub fn localize(
         valid_fraction,
         rejection,
     })
-}
-
-/// Bilinear interpolation of a `w × h` grid whose sample `(i, j)` sits at coordinate `(i, j)`,
-/// clamped at the edges.
-fn bilinear(g: &[f64], w: usize, h: usize, fx: f64, fy: f64) -> f64 {
-    let x = fx.clamp(0.0, (w - 1) as f64);
-    let y = fy.clamp(0.0, (h - 1) as f64);
-    let (x0, y0) = (x.floor() as usize, y.floor() as usize);
-    let (x1, y1) = ((x0 + 1).min(w - 1), (y0 + 1).min(h - 1));
-    let (tx, ty) = (x - x0 as f64, y - y0 as f64);
-    let top = g[y0 * w + x0] * (1.0 - tx) + g[y0 * w + x1] * tx;
-    let bottom = g[y1 * w + x0] * (1.0 - tx) + g[y1 * w + x1] * tx;
-    top * (1.0 - ty) + bottom * ty
 }
 
 #[cfg(test)]
