@@ -27,8 +27,6 @@ use localization::synthetic::{
     ORTHO_RESOLUTION_M_PER_PX, ORTHO_SIZE_PX, OrbitalParams, RoverImagingParams, render_orbital,
     render_rover, truth_patch,
 };
-use rand::{RngExt, SeedableRng};
-use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
 /// Half side of the scored window around the truth, metres.
@@ -36,10 +34,6 @@ const WINDOW_M: f64 = 20.0;
 /// The benchmark's extra truth patch beyond the search window, metres
 /// (`benchmark_set::PATCH_MARGIN_M`).
 const PATCH_MARGIN_M: f64 = 4.0;
-/// The benchmark's largest prior offset, metres (`benchmark_set::MAX_PRIOR_OFFSET_M`).
-const MAX_PRIOR_OFFSET_M: f64 = 20.0;
-/// True positions are at least this far from the map edge (`benchmark_set`), metres.
-const POSITION_MARGIN_M: f64 = 140.0;
 
 /// One case's terrain and (log density at the truth, Mahalanobis², error of the mean).
 type Row = (TerrainKind, (f64, f64, f64));
@@ -55,30 +49,15 @@ fn render(
     maps: &BenchmarkMaps,
     p: &MatchParams,
 ) -> Option<Case> {
-    // The same draws, in the same order, as `benchmark_set::run_case`.
+    // The benchmark's own draws for this case.
     let layers = maps.get(case.terrain);
-    let mut rng = ChaCha8Rng::seed_from_u64(case.seed);
-    let (x0, y0, x1, y1) = layers.dem.extent_m();
-    let (lo_x, hi_x) = (
-        x0.min(x1) + POSITION_MARGIN_M,
-        x0.max(x1) - POSITION_MARGIN_M,
-    );
-    let (lo_y, hi_y) = (
-        y0.min(y1) + POSITION_MARGIN_M,
-        y0.max(y1) - POSITION_MARGIN_M,
-    );
-    let truth_m = [
-        lo_x + (hi_x - lo_x).max(0.0) * rng.random::<f64>(),
-        lo_y + (hi_y - lo_y).max(0.0) * rng.random::<f64>(),
-    ];
-    let angle = std::f64::consts::TAU * rng.random::<f64>();
-    let dist = MAX_PRIOR_OFFSET_M * rng.random::<f64>();
-    let prior_m = [
-        truth_m[0] + dist * angle.cos(),
-        truth_m[1] + dist * angle.sin(),
-    ];
-    let (truth_seed, orbital_seed, rover_seed): (u64, u64, u64) =
-        (rng.random(), rng.random(), rng.random());
+    let localization::benchmark_set::CaseDraws {
+        truth_m,
+        prior_m,
+        truth_seed,
+        orbital_seed,
+        rover_seed,
+    } = localization::benchmark_set::case_draws(case, layers);
     let half_ortho_m = 0.5 * ORTHO_SIZE_PX as f64 * ORTHO_RESOLUTION_M_PER_PX;
     // Centred on the truth (the benchmark centres its patch on the prior, up to 20 m away,
     // which would not hold the window around the truth).

@@ -507,13 +507,26 @@ pub fn report_of(rows: Vec<CaseResult>) -> BenchmarkReport {
     }
 }
 
-/// One case: render, localize, score.
-fn run_case(
-    case: &BenchmarkCase,
-    layers: &MapLayers,
-    params: &MatchParams,
-    imaging: &BenchmarkImaging,
-) -> CaseResult {
+/// What a benchmark case draws from its seed, in this order: the true position (at least
+/// 140 m inside the map), the prior (up to [`MAX_PRIOR_OFFSET_M`] from it in a uniform
+/// direction), and the seeds of the truth patch, the orbital and the rover rendering.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CaseDraws {
+    /// True rover position, map metres.
+    pub truth_m: [f64; 2],
+    /// The prior the matcher starts from, map metres.
+    pub prior_m: [f64; 2],
+    /// Seed of the truth patch.
+    pub truth_seed: u64,
+    /// Seed of the orbital rendering.
+    pub orbital_seed: u64,
+    /// Seed of the rover rendering.
+    pub rover_seed: u64,
+}
+
+/// The draws of `case` on its terrain's `layers` (what [`run_benchmark`] renders and scores).
+#[must_use]
+pub fn case_draws(case: &BenchmarkCase, layers: &MapLayers) -> CaseDraws {
     let mut rng = ChaCha8Rng::seed_from_u64(case.seed);
     let (x0, y0, x1, y1) = layers.dem.extent_m();
     let (lo_x, hi_x) = (
@@ -536,6 +549,29 @@ fn run_case(
     ];
     let (truth_seed, orbital_seed, rover_seed): (u64, u64, u64) =
         (rng.random(), rng.random(), rng.random());
+    CaseDraws {
+        truth_m,
+        prior_m,
+        truth_seed,
+        orbital_seed,
+        rover_seed,
+    }
+}
+
+/// One case: render, localize, score.
+fn run_case(
+    case: &BenchmarkCase,
+    layers: &MapLayers,
+    params: &MatchParams,
+    imaging: &BenchmarkImaging,
+) -> CaseResult {
+    let CaseDraws {
+        truth_m,
+        prior_m,
+        truth_seed,
+        orbital_seed,
+        rover_seed,
+    } = case_draws(case, layers);
     let mut row = CaseResult {
         id: case.id,
         terrain: case.terrain,
