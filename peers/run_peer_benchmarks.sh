@@ -8,7 +8,9 @@
 #           planner (B6 activity planner against OR-Tools CP-SAT),
 #           study (many seeds through the library, map loaded once, against the CLI per run),
 #           sweep (Monte Carlo sweeps: cargo bench --bench sweep against pyarrow and scipy, and the
-#           issue 11 targets timed end to end with peak memory).
+#           issue 11 targets timed end to end with peak memory),
+#           filters (one EKF step against filterpy's ExtendedKalmanFilter; the particle filter's
+#           update, resampling against filterpy's systematic_resample and numpy).
 #
 # The Rust benches build with -C target-cpu=native into their own target dir
 # (target/bench-native), so the shared target/ is not rebuilt with other flags.
@@ -147,8 +149,28 @@ section_sweep() {
     uptime
 }
 
+# --- filters: one EKF step (paper 004) and one particle-filter update (paper 002) -------------
+# cargo bench --bench filters (dumps the EKF window and the particle weights and scores), then
+# filterpy 2.0.0 and numpy on the same instances, then the table (peer / solsim, > 1 = faster).
+section_filters() {
+    local dump="$BENCH_TARGET/bench-filters"
+    local start=$SECONDS
+    echo "== filters: uptime (load on this 2-core machine) =="
+    uptime
+    echo "== filters: cargo bench --bench filters (dumps the instances to $dump) =="
+    SOLSIM_FILTERS_DUMP="$dump" RUSTFLAGS="-C target-cpu=native" CARGO_TARGET_DIR="$BENCH_TARGET" \
+        cargo bench --bench filters
+    echo "== filters: filterpy and numpy peers on the same instances =="
+    python3 peers/bench_filters.py peers --dump "$dump" --out "$dump/peers.json"
+    echo "== filters: table (peer / solsim, > 1 = solsim faster) =="
+    python3 peers/bench_filters.py report --peers "$dump/peers.json" \
+        --criterion "$BENCH_TARGET/criterion"
+    uptime
+    echo "filters: whole section $((SECONDS - start)) s wall"
+}
+
 sections=("$@")
-[ ${#sections[@]} -eq 0 ] && sections=(grid campaign census planner study sweep)
+[ ${#sections[@]} -eq 0 ] && sections=(grid campaign census planner study sweep filters)
 for s in "${sections[@]}"; do
     "section_$s"
 done

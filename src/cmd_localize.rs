@@ -1,14 +1,16 @@
 //! `solsim localize-bench`: the synthetic benchmark set of onboard global localization (the size
 //! of paper 000 §4's 264 panoramas) run with census, NCC and mutual information, one accuracy
-//! table per method.
+//! table per method, and with the other localizers side by side
+//! ([`crate::localizer_comparison`]).
 
 use std::fmt::Write as _;
 
 use localization::benchmark_set::{
-    BenchmarkImaging, BenchmarkMaps, BenchmarkReport, ErrorStats, PAPER_CASE_COUNT,
-    benchmark_cases, run_benchmark_reporting,
+    BenchmarkMaps, BenchmarkReport, ErrorStats, PAPER_CASE_COUNT, benchmark_cases,
 };
 use localization::matcher::{MatchParams, Method};
+
+use crate::localizer_comparison::{Candidate, compare, table as comparison_table};
 
 use crate::progress::Progress;
 
@@ -24,10 +26,16 @@ pub struct LocalizeBenchArgs {
     /// Seed of the three procedural benchmark maps.
     #[arg(long, default_value_t = 1)]
     pub map_seed: u64,
-    /// Methods to run: census, ncc, mi (comma-separated).
+    /// Localizers to run, comma-separated: census, ncc, mi (image matching, one accuracy table
+    /// each), statistical (the flight-statistics model), particle (paper 002's filter), ekf
+    /// (paper 004's filter, orbiter ranging); `all` for the six. With more than one, a
+    /// side-by-side table follows.
     #[arg(long, default_value = "census,ncc,mi", value_delimiter = ',')]
     pub methods: Vec<String>,
-    /// Print JSON (the full reports, one per method) instead of the tables.
+    /// Print only the side-by-side table, as Markdown (what BENCHMARKS.md holds).
+    #[arg(long, conflicts_with = "json")]
+    pub markdown: bool,
+    /// Print JSON (the matchers' full reports and the side-by-side rows) instead of tables.
     #[arg(long)]
     pub json: bool,
 }
@@ -68,52 +76,77 @@ pub fn table(method: Method, r: &BenchmarkReport) -> String {
     s
 }
 
+/// The localizers `--methods` names, in its order (`all` expands to the six).
+fn candidates(methods: &[String]) -> anyhow::Result<Vec<Candidate>> {
+    let mut out = Vec::new();
+    for m in methods {
+        if m == "all" {
+            out.extend(Candidate::ALL);
+            continue;
+        }
+        out.push(Candidate::from_name(m).ok_or_else(|| {
+            anyhow::anyhow!(
+                "--methods: expected census, ncc, mi, statistical, particle, ekf or all, got {m:?}"
+            )
+        })?);
+    }
+    out.dedup();
+    Ok(out)
+}
+
 /// Run the benchmark and print the tables (or JSON).
 pub fn run(args: &LocalizeBenchArgs, out: &mut dyn std::io::Write) -> anyhow::Result<()> {
-    let methods = args
-        .methods
-        .iter()
-        .map(|m| {
-            Method::from_name(m)
-                .ok_or_else(|| anyhow::anyhow!("--methods: expected census, ncc or mi, got {m:?}"))
-        })
-        .collect::<anyhow::Result<Vec<_>>>()?;
+    let candidates = candidates(&args.methods)?;
     if args.cases == 0 {
         anyhow::bail!("--cases: expected at least 1 case, got 0");
     }
     let maps = BenchmarkMaps::generate(args.map_seed);
     let cases = benchmark_cases(args.cases, args.seed);
-    let mut docs = Vec::new();
-    for method in methods {
-        let params = MatchParams {
-            method,
-            ..MatchParams::default()
-        };
-        let start = std::time::Instant::now();
-        let progress = Progress::new(false, method.name(), "cases", cases.len() as u64);
-        let report = run_benchmark_reporting(
-            &cases,
-            |k| maps.get(k),
-            &params,
-            &BenchmarkImaging::default(),
-            &|n| progress.update(n, cases.len() as u64),
-        );
-        progress.finish();
-        if args.json {
-            docs.push(serde_json::json!({ "method": method.name(), "report": report }));
-        } else {
-            write!(out, "{}", table(method, &report))?;
-            writeln!(
-                out,
-                "  ({} cases in {:.1} s)\n",
-                args.cases,
-                start.elapsed().as_secs_f64()
-            )?;
-        }
-    }
+    let start = std::time::Instant::now();
+    let label: Vec<&str> = candidates.iter().map(|c| c.name()).collect();
+    let progress = Progress::new(false, &label.join(","), "cases", cases.len() as u64);
+    let comparison = compare(&cases, &maps, &candidates, &|n| {
+        progress.update(n, cases.len() as u64);
+    });
+    progress.finish();
+    let elapsed_s = start.elapsed().as_secs_f64();
     if args.json {
-        writeln!(out, "{}", serde_json::to_string_pretty(&docs)?)?;
+        let reports: Vec<_> = comparison
+            .matcher_reports
+            .iter()
+            .map(
+                |(method, report)| serde_json::json!({ "method": method.name(), "report": report }),
+            )
+            .collect();
+        let doc = serde_json::json!({
+            "cases": args.cases,
+            "seed": args.seed,
+            "map_seed": args.map_seed,
+            "matchers": reports,
+            "comparison": comparison.rows,
+        });
+        writeln!(out, "{}", serde_json::to_string_pretty(&doc)?)?;
+        return Ok(());
     }
+    if args.markdown {
+        write!(out, "{}", comparison_table(&comparison.rows, true))?;
+        return Ok(());
+    }
+    for (method, report) in &comparison.matcher_reports {
+        writeln!(out, "{}", table(*method, report))?;
+    }
+    if candidates.len() > 1 || comparison.matcher_reports.is_empty() {
+        writeln!(
+            out,
+            "side by side (accuracy of the accepted results, metres; the localizer's own time per case):"
+        )?;
+        write!(out, "{}", comparison_table(&comparison.rows, false))?;
+    }
+    writeln!(
+        out,
+        "({} cases, seed {}, map seed {}, in {elapsed_s:.1} s)",
+        args.cases, args.seed, args.map_seed
+    )?;
     Ok(())
 }
 

@@ -29,6 +29,7 @@ pub mod cmd_sweep;
 pub mod cmd_validate;
 pub mod cmd_zones;
 pub mod figures;
+pub mod localizer_comparison;
 pub mod output_set;
 pub mod progress;
 pub mod regress;

@@ -73,7 +73,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
 #[must_use]
 pub fn sols_csv(outcome: &CampaignOutcome) -> String {
     let mut s = String::from(
-        "strategy,sol,plan_uplink_sol,drove,skip_reason,distance_m,d_vo_m,d_novo_m,drive_time_s,start_uncertainty_m,end_uncertainty_m,fault,fault_after_m,fault_uncertainty_m,passage_clearance_m,ground_localized,onboard_localization,onboard_localizer,onboard_start_lmst,onboard_duration_s,onboard_error_m,end_x_m,end_y_m,true_x_m,true_y_m,truth_error_m,truth_inside_disc,reached_goal\n",
+        "strategy,sol,plan_uplink_sol,drove,skip_reason,distance_m,d_vo_m,d_novo_m,drive_time_s,start_uncertainty_m,end_uncertainty_m,fault,fault_after_m,fault_uncertainty_m,passage_clearance_m,ground_localized,onboard_localization,onboard_localizer,onboard_start_lmst,onboard_duration_s,onboard_error_m,onboard_semi_major_m,onboard_semi_minor_m,onboard_mmgis_angle_deg,end_x_m,end_y_m,true_x_m,true_y_m,truth_error_m,truth_inside_disc,reached_goal\n",
     );
     for r in &outcome.sols {
         let onboard = match &r.onboard_localization {
@@ -82,14 +82,21 @@ pub fn sols_csv(outcome: &CampaignOutcome) -> String {
             Some(_) => "rejected",
         };
         let ob = r.onboard_localization.as_ref();
+        let ellipse = ob.and_then(|l| l.ellipse);
+        let ellipse_cell = |f: fn(&sim::outcome::PositionEllipse) -> f64| {
+            ellipse.map_or(String::new(), |e| format!("{:.3}", f(&e)))
+        };
         let onboard_detail = format!(
-            "{},{},{},{}",
+            "{},{},{},{},{},{},{}",
             ob.map_or("", |l| l.localizer),
             ob.and_then(|l| l.start_lmst.as_deref()).unwrap_or(""),
             ob.and_then(|l| l.duration_s)
                 .map_or(String::new(), |d| format!("{d:.0}")),
             ob.and_then(|l| l.error_m)
                 .map_or(String::new(), |e| format!("{e:.3}")),
+            ellipse_cell(|e| e.semi_major_m),
+            ellipse_cell(|e| e.semi_minor_m),
+            ellipse_cell(|e| e.mmgis_angle_deg),
         );
         let _ = writeln!(
             s,
@@ -214,9 +221,15 @@ pub fn sol_table(outcome: &CampaignOutcome) -> String {
                 (Some(start), Some(d)) => format!(" {start} +{:.0} min", d / 60.0),
                 _ => String::new(),
             };
+            let ellipse = l.ellipse.map_or(String::new(), |e| {
+                format!(
+                    ", 1σ {:.2}×{:.2} m az {:.0}°",
+                    e.semi_major_m, e.semi_minor_m, e.azimuth_deg
+                )
+            });
             note.push_str(&if l.applied {
                 format!(
-                    "onboard loc ({}{when}) → r={:.2} m",
+                    "onboard loc ({}{when}{ellipse}) → r={:.2} m",
                     l.localizer, l.uncertainty_after_m
                 )
             } else {

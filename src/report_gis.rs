@@ -280,6 +280,28 @@ pub fn paths_layer(scenario: &Scenario, outcome: &CampaignOutcome) -> Layer {
                 }),
             ));
         }
+        if let Some(l) = &r.onboard_localization
+            && let Some(e) = l.ellipse
+        {
+            features.push(Feature::new(
+                Shape::Point(r.end_position_m),
+                json!({
+                    "layer": "paths",
+                    "kind": "localization",
+                    "strategy": outcome.strategy,
+                    "sol": r.sol,
+                    "localizer": l.localizer,
+                    "applied": l.applied,
+                    "x_m": r.end_position_m[0],
+                    "y_m": r.end_position_m[1],
+                    "semi_major_m": e.semi_major_m,
+                    "semi_minor_m": e.semi_minor_m,
+                    "azimuth_deg": e.azimuth_deg,
+                    "angle_deg": e.mmgis_angle_deg,
+                    "disc_radius_m": e.disc_radius_m,
+                }),
+            ));
+        }
         if r.drove {
             let end = r.path_m.last().copied().unwrap_or(r.end_position_m);
             features.push(Feature::new(
@@ -322,6 +344,28 @@ fn disc_ring(centre: [f64; 2], r_m: f64) -> Vec<[f64; 2]> {
     ring
 }
 
+/// A closed counter-clockwise ring of [`ELLIPSE_VERTICES`] vertices on `sigmas` × the 1σ
+/// ellipse `e` around `centre` (map metres; the major axis `e.azimuth_deg` east of north).
+fn ellipse_ring(centre: [f64; 2], e: &sim::outcome::PositionEllipse, sigmas: f64) -> Vec<[f64; 2]> {
+    let (a, b) = (sigmas * e.semi_major_m, sigmas * e.semi_minor_m);
+    // Unit vectors of the major and minor axes in (east, north).
+    let az = e.azimuth_deg.to_radians();
+    let major = [az.sin(), az.cos()];
+    let minor = [-major[1], major[0]];
+    let mut ring: Vec<[f64; 2]> = (0..ELLIPSE_VERTICES)
+        .map(|k| {
+            let t = std::f64::consts::TAU * k as f64 / ELLIPSE_VERTICES as f64;
+            let (u, v) = (a * t.cos(), b * t.sin());
+            [
+                centre[0] + u * major[0] + v * minor[0],
+                centre[1] + u * major[1] + v * minor[1],
+            ]
+        })
+        .collect();
+    ring.push(ring[0]);
+    ring
+}
+
 /// The layers of one run: paths, sol-end ellipses, faults and zones at each fault.
 #[must_use]
 pub fn run_layers(scenario: &Scenario, outcome: &CampaignOutcome) -> Vec<Layer> {
@@ -347,6 +391,28 @@ pub fn run_layers(scenario: &Scenario, outcome: &CampaignOutcome) -> Vec<Layer> 
                     "uncertainty_semi_minor_m": r.end_uncertainty_m,
                     "uncertainty_angle_deg": 0.0,
                     "fault": fault,
+                }),
+            ));
+        }
+        if let Some(l) = &r.onboard_localization
+            && let Some(e) = l.ellipse
+            && l.applied
+            && e.semi_minor_m > 0.0
+        {
+            ellipses.push(Feature::new(
+                Shape::Polygon(vec![ellipse_ring(r.end_position_m, &e, 3.0)]),
+                json!({
+                    "layer": "ellipses",
+                    "kind": "localization_3sigma",
+                    "strategy": outcome.strategy,
+                    "sol": r.sol,
+                    "localizer": l.localizer,
+                    "x_m": r.end_position_m[0],
+                    "y_m": r.end_position_m[1],
+                    "semi_major_m": 3.0 * e.semi_major_m,
+                    "semi_minor_m": 3.0 * e.semi_minor_m,
+                    "azimuth_deg": e.azimuth_deg,
+                    "angle_deg": e.mmgis_angle_deg,
                 }),
             ));
         }
@@ -503,5 +569,44 @@ mod tests {
         for p in &ring {
             assert!(((p[0] - 10.0).hypot(p[1] - 20.0) - 3.0).abs() < 1e-12);
         }
+    }
+
+    #[test]
+    fn filter_ellipse_ring_has_its_axes_and_azimuth() {
+        // Major axis 30° east of north: 3σ semi-axes 6 m and 1.5 m.
+        let e = sim::outcome::PositionEllipse {
+            semi_major_m: 2.0,
+            semi_minor_m: 0.5,
+            azimuth_deg: 30.0,
+            mmgis_angle_deg: 120.0,
+            disc_radius_m: 6.0,
+        };
+        let ring = ellipse_ring([10.0, 20.0], &e, 3.0);
+        assert_eq!(ring.len(), ELLIPSE_VERTICES + 1);
+        assert_eq!(ring.first(), ring.last());
+        let twice_area: f64 = ring
+            .windows(2)
+            .map(|w| w[0][0] * w[1][1] - w[1][0] * w[0][1])
+            .sum();
+        // A 72-gon inscribed in the ellipse: area within 0.2 % of π·a·b, counter-clockwise.
+        let exact = std::f64::consts::PI * 6.0 * 1.5;
+        assert!(
+            (twice_area / 2.0 - exact).abs() < 2e-3 * exact,
+            "{twice_area}"
+        );
+        let far = ring
+            .iter()
+            .max_by(|p, q| {
+                let d = |p: &[f64; 2]| (p[0] - 10.0).hypot(p[1] - 20.0);
+                d(p).total_cmp(&d(q))
+            })
+            .expect("the ring has vertices");
+        // The farthest vertex lies 6 m along azimuth 30° (or 210°).
+        let bearing = (far[0] - 10.0)
+            .atan2(far[1] - 20.0)
+            .to_degrees()
+            .rem_euclid(180.0);
+        assert!((bearing - 30.0).abs() < 1e-9, "{bearing}");
+        assert!(((far[0] - 10.0).hypot(far[1] - 20.0) - 6.0).abs() < 1e-9);
     }
 }

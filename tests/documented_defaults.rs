@@ -129,7 +129,7 @@ fn readme_defaults_match_the_code() {
     );
     for text in [
         format!(
-            "`hbs_slowdown` (image localizers only; default {:.1})",
+            "`hbs_slowdown` (image localizers and the particle filter; default {:.1})",
             onboard.hbs_slowdown
         ),
         format!("development machine, {MEASURED_FLIGHT_SIZE_RUN_S} s"),
@@ -188,7 +188,31 @@ fn scenario_level_defaults_apply_when_fields_are_omitted() {
     assert_eq!(s.campaign.rules, sim::policy::OperationsRules::default());
     match &s.campaign.localizer {
         OnboardLocalizer::Statistical(l) => assert_eq!(*l, StatisticalLocalizer::default()),
-        OnboardLocalizer::Imagery(_) => panic!("the default localizer is the statistical one"),
+        other => panic!(
+            "the default localizer is the statistical one, not {}",
+            other.name()
+        ),
     }
     assert_eq!(s.campaign.model, UncertaintyModel::default());
+}
+
+#[test]
+fn the_filter_localizers_defaults_are_the_readmes() {
+    let readme =
+        std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md"))
+            .expect("README");
+    let pf = localization::particle::ParticleParams::default();
+    let ekf = localization::ekf::ParkedSettings::default();
+    for text in [
+        format!("`particle_count` ({}; 100 to", pf.particle_count),
+        format!("`range_sigma_m` ({:.1}, Table 1", ekf.range_sigma_m),
+        format!("`pass_duration_s` ({}; 60 to 3600)", ekf.pass_duration_s),
+        format!("`elevation_mask_deg` ({})", ekf.elevation_mask_deg),
+    ] {
+        assert!(readme.contains(&text), "README no longer states {text:?}");
+    }
+    assert_eq!(
+        ekf.image_resolution_m, None,
+        "README: `image_resolution_m` (unset"
+    );
 }

@@ -54,14 +54,16 @@ fn killed_at_random_moments_then_resumed_equals_an_uninterrupted_sweep() {
             child.kill().expect("SIGKILL");
             kills += 1;
         }
-        let status = child.wait().expect("wait");
-        if status.success() {
+        let o = child.wait_with_output().expect("wait");
+        if o.status.success() {
             break;
         }
         // Whatever the kill left must be resumable: never an error.
         assert!(
-            status.code().is_none(),
-            "an interrupted run exited with {status}"
+            o.status.code().is_none(),
+            "an interrupted run exited with {}: {}",
+            o.status,
+            common::stderr(&o)
         );
     }
     assert!(

@@ -8,7 +8,10 @@
 //! Writes, for the first seed, `DIR/ekf_case{1..4}.csv` (bias-estimating filter) and
 //! `DIR/ekf_case{1..4}_paper.csv` (the paper's filter), one row per second:
 //! `t_s,east_err_m,north_err_m,total_err_m,sigma_east_m,sigma_north_m` (error = estimate − truth;
-//! σ = the filter's 1σ); and `DIR/ekf_table1_runs.csv` with every run's error summary. Prints,
+//! σ = the filter's 1σ); `DIR/ekf_table1.svg` and `DIR/ekf_table1_paper.svg`, the total error
+//! against time of the four cases (first seed) with the filter's 3σ radius and the paper's
+//! figure (paper 004 Figs. 3, 5, 7, 9); and `DIR/ekf_table1_runs.csv` with every run's error
+//! summary. Prints,
 //! per filter and case, the mean ± standard deviation over the seeds of the final, RMS and maximum
 //! total error, over the whole run and over its last 500 s, beside the paper's figure.
 
@@ -100,6 +103,86 @@ fn figures(run: &CaseRun) -> RunFigures {
     }
 }
 
+/// The four cases' total error (first seed) against time, one panel each, with the filter's 3σ
+/// radius (3·√(σ_e² + σ_n²)) and the paper's figure as a dashed line.
+fn error_figure(
+    path: &std::path::Path,
+    title: &str,
+    runs: &[(Table1Case, CaseRun)],
+) -> Result<(), Box<dyn std::error::Error>> {
+    use plotters::prelude::*;
+    let root = SVGBackend::new(path, (1100, 800)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let root = root.titled(title, ("sans-serif", 20))?;
+    for ((case, run), area) in runs.iter().zip(root.split_evenly((2, 2))) {
+        let three_sigma: Vec<(f64, f64)> = run
+            .steps
+            .iter()
+            .map(|s| {
+                let [se, sn] = s.sigma_enu_m();
+                (f64::from(s.truth.t_s), 3.0 * se.hypot(sn))
+            })
+            .collect();
+        let error: Vec<(f64, f64)> = run
+            .steps
+            .iter()
+            .map(|s| (f64::from(s.truth.t_s), s.error_total_m))
+            .collect();
+        let (paper_m, paper_words) = case.paper_error_m();
+        // The first seconds hold the prior's 10 m σ: scale to the run after 50 s.
+        let top = error
+            .iter()
+            .chain(&three_sigma)
+            .filter(|(t, _)| *t >= 50.0)
+            .map(|(_, v)| *v)
+            .fold(paper_m, f64::max)
+            * 1.1;
+        let mut chart = ChartBuilder::on(&area)
+            .caption(
+                format!(
+                    "case {}: {} m image, {} m range (paper: {paper_words})",
+                    case.number(),
+                    case.image_resolution_m(),
+                    case.range_sigma_m()
+                ),
+                ("sans-serif", 15),
+            )
+            .margin(10)
+            .x_label_area_size(35)
+            .y_label_area_size(55)
+            .build_cartesian_2d(0.0..1000.0, 0.0..top)?;
+        chart
+            .configure_mesh()
+            .x_desc("time, s")
+            .y_desc("total position error, m")
+            .draw()?;
+        chart
+            .draw_series(LineSeries::new(error, BLUE.stroke_width(2)))?
+            .label("|estimate - truth|")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLUE.stroke_width(2)));
+        chart
+            .draw_series(LineSeries::new(three_sigma, RED.stroke_width(1)))?
+            .label("filter 3-sigma radius")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RED));
+        chart
+            .draw_series(DashedLineSeries::new(
+                vec![(0.0, paper_m), (1000.0, paper_m)],
+                6,
+                4,
+                BLACK.stroke_width(1),
+            ))?
+            .label("paper's figure")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK));
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .draw()?;
+    }
+    root.present()?;
+    Ok(())
+}
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args = parse_args()?;
     std::fs::create_dir_all(&args.out)?;
@@ -130,6 +213,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         (FilterModel::BiasEstimating, "bias-estimating", ""),
         (FilterModel::Paper, "paper 4-state", "_paper"),
     ] {
+        let mut first_runs = Vec::new();
         for case in Table1Case::ALL {
             let settings = CaseSettings::table1(case).with_model(model);
             let mut figs = Vec::with_capacity(seeds.len());
@@ -140,6 +224,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                         .out
                         .join(format!("ekf_case{}{suffix}.csv", case.number()));
                     std::fs::write(path, error_csv(&run))?;
+                    first_runs.push((case, run.clone()));
                 }
                 let f = figures(&run);
                 let end = run.steps.last().expect("a run has seconds");
@@ -177,6 +262,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 mean_sd(&figs.iter().map(|f| f.sigma_final_m).collect::<Vec<_>>()).0,
             );
         }
+        error_figure(
+            &args.out.join(format!("ekf_table1{suffix}.svg")),
+            &format!("Paper 004 Table 1, {name} filter, seed {}", seeds[0]),
+            &first_runs,
+        )?;
     }
     std::fs::write(args.out.join("ekf_table1_runs.csv"), runs_csv)?;
     println!("wrote {}", args.out.display());

@@ -20,6 +20,7 @@
 //! println!("mean error {:.2} m", report.all.mean_m);
 //! ```
 
+use crate::synthetic::{OrbitalProducts, RoverObservation, SyntheticError};
 use maps::procedural::{DuneField, TerrainParams, generate};
 use maps::{GeoTransform, MapLayers};
 use rand::{RngExt, SeedableRng};
@@ -559,18 +560,44 @@ pub fn case_draws(case: &BenchmarkCase, layers: &MapLayers) -> CaseDraws {
 }
 
 /// One case: render, localize, score.
-fn run_case(
+/// Render `case` on its terrain's `layers` as [`run_benchmark`] does: its [`case_draws`], the
+/// truth patch centred on the prior covering a search window of `search_radius_m` (± half the
+/// orthomosaic ± a 4 m margin), its orbital products and the rover's observation at the
+/// true position with the case's wedges and sun.
+///
+/// # Errors
+/// [`SyntheticError`] if the patch or the observation cannot be rendered.
+pub fn render_case(
+    case: &BenchmarkCase,
+    layers: &MapLayers,
+    search_radius_m: f64,
+    imaging: &BenchmarkImaging,
+) -> Result<(CaseDraws, OrbitalProducts, RoverObservation), SyntheticError> {
+    let draws = case_draws(case, layers);
+    let half_ortho_m = 0.5 * ORTHO_SIZE_PX as f64 * ORTHO_RESOLUTION_M_PER_PX;
+    let half_size_m = search_radius_m + half_ortho_m + PATCH_MARGIN_M;
+    let rover_params = RoverImagingParams {
+        wedge_count: usize::from(case.wedges),
+        sun_azimuth_range_deg: [case.sun_azimuth_deg; 2],
+        sun_elevation_range_deg: [case.sun_elevation_deg; 2],
+        ..imaging.rover
+    };
+    let patch = truth_patch(layers, draws.prior_m, half_size_m, draws.truth_seed)?;
+    let orbital = render_orbital(&patch, &imaging.orbital, draws.orbital_seed)?;
+    let rover = render_rover(&patch, draws.truth_m, &rover_params, draws.rover_seed)?;
+    Ok((draws, orbital, rover))
+}
+
+/// Render and localize one case (one row of [`run_benchmark_with`]).
+#[must_use]
+pub fn run_case(
     case: &BenchmarkCase,
     layers: &MapLayers,
     params: &MatchParams,
     imaging: &BenchmarkImaging,
 ) -> CaseResult {
     let CaseDraws {
-        truth_m,
-        prior_m,
-        truth_seed,
-        orbital_seed,
-        rover_seed,
+        truth_m, prior_m, ..
     } = case_draws(case, layers);
     let mut row = CaseResult {
         id: case.id,
@@ -588,21 +615,8 @@ fn run_case(
         failure: None,
         heading_error_deg: None,
     };
-    let half_ortho_m = 0.5 * ORTHO_SIZE_PX as f64 * ORTHO_RESOLUTION_M_PER_PX;
-    let half_size_m = params.search_radius_m + half_ortho_m + PATCH_MARGIN_M;
-    let rover_params = RoverImagingParams {
-        wedge_count: usize::from(case.wedges),
-        sun_azimuth_range_deg: [case.sun_azimuth_deg; 2],
-        sun_elevation_range_deg: [case.sun_elevation_deg; 2],
-        ..imaging.rover
-    };
-    let rendered = truth_patch(layers, prior_m, half_size_m, truth_seed).and_then(|patch| {
-        let orbital = render_orbital(&patch, &imaging.orbital, orbital_seed)?;
-        let rover = render_rover(&patch, truth_m, &rover_params, rover_seed)?;
-        Ok((orbital, rover))
-    });
-    let (orbital, rover) = match rendered {
-        Ok(v) => v,
+    let (orbital, rover) = match render_case(case, layers, params.search_radius_m, imaging) {
+        Ok((_, orbital, rover)) => (orbital, rover),
         Err(e) => {
             row.failure = Some(e.to_string());
             return row;

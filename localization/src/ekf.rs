@@ -15,6 +15,8 @@
 //!   [`CircularOrbit`] and its RK4 [`Ephemeris`], the random drive [`TruthTrajectory`], the
 //!   IMU ([`ImuErrors`], [`sample_imu`]), and the measurement models ([`predicted_range_m`],
 //!   [`range_jacobian`], [`elevation_rad`], [`position_fix_jacobian`]).
+//! - [`parked_fix`]: the filter as the simulator's post-drive localizer, a parked rover
+//!   ranging through one pass with zero-velocity updates ([`ParkedSettings`], [`ParkedFix`]).
 //!
 //! ## State
 //! The paper estimates `X = [p, v]`, position and velocity in the navigation (east-north-up) frame
@@ -54,6 +56,7 @@ mod imu;
 mod mars;
 mod measurement;
 mod orbit;
+mod parked;
 mod state;
 mod table1;
 mod trajectory;
@@ -73,6 +76,7 @@ pub use measurement::{
     predicted_fix_m, predicted_range_m, range_jacobian,
 };
 pub use orbit::{CircularOrbit, Ephemeris, OrbitState};
+pub use parked::{ParkedFix, ParkedSettings, parked_fix};
 pub use state::{STATE_DIM, StateCovariance, StateVector, ix};
 pub use table1::{
     CaseRun, ErrorSummary, FilteredRun, MeasurementStreams, Simulation, StepRecord, Table1Case,

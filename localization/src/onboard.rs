@@ -48,8 +48,8 @@ use crate::benchmark_set::PATCH_MARGIN_M;
 use crate::hbs::{ActivityLog, HbsFile, HbsParams, LossReason, run_activity};
 use crate::matcher::{MatchParams, MatchResult, Method, OrbitalMap, RoverImages, localize};
 use crate::synthetic::{
-    ORTHO_RESOLUTION_M_PER_PX, ORTHO_SIZE_PX, OrbitalParams, RoverImagingParams, SyntheticError,
-    patch_grid, render_orbital_with, render_rover, truth_patch_on,
+    ORTHO_RESOLUTION_M_PER_PX, ORTHO_SIZE_PX, OrbitalParams, RoverImagingParams, RoverObservation,
+    SyntheticError, patch_grid, render_orbital_with, render_rover, truth_patch_on,
 };
 
 mod cache;
@@ -376,6 +376,76 @@ fn result_bytes(outcome: &Result<MatchResult, String>) -> Vec<u8> {
     }
 }
 
+/// The imagery of one localization activity: the orbital products of a patch around the
+/// prior and the rover's post-drive observation rendered at the truth.
+#[derive(Clone, Debug)]
+pub struct ActivityImagery {
+    rendered: Arc<Rendered>,
+    /// The rover's orthomosaic and DEM with their validity, rendered at the true position.
+    pub rover: RoverObservation,
+}
+
+impl ActivityImagery {
+    /// The orbital map of the patch: appearance and DEM as the orbiter sees them.
+    #[must_use]
+    pub fn orbital_map(&self) -> OrbitalMap<'_> {
+        OrbitalMap {
+            appearance: &self.rendered.orbital.appearance,
+            dem: Some(&self.rendered.orbital.dem),
+        }
+    }
+
+    /// The rover's images as the matcher takes them.
+    #[must_use]
+    pub fn rover_images(&self) -> RoverImages<'_> {
+        RoverImages {
+            ortho: &self.rover.ortho,
+            ortho_valid: &self.rover.valid,
+            dem: Some((&self.rover.dem, &self.rover.dem_valid)),
+        }
+    }
+}
+
+/// Render what one activity sees (as [`run_onboard_with`] does): a patch covering a search
+/// window of `radius_m` around `req.prior_m` and the rover's view around `req.truth_m`, its
+/// orbital products, and the rover's imagery at the truth drawn from `rover_seed`
+/// ([`run_onboard_with`] takes it as the first draw of `req.sol_seed`'s stream).
+///
+/// # Errors
+/// [`SyntheticError`] if the window or the rover's view leaves the map, or a setting is out
+/// of range.
+pub fn render_activity_imagery(
+    layers: &MapLayers,
+    cache: Option<&OnboardCache>,
+    req: &OnboardRequest,
+    s: &OnboardSettings,
+    radius_m: f64,
+    rover_seed: u64,
+) -> Result<ActivityImagery, SyntheticError> {
+    let half_ortho_m = 0.5 * ORTHO_SIZE_PX as f64 * ORTHO_RESOLUTION_M_PER_PX;
+    let offset = (req.truth_m[0] - req.prior_m[0])
+        .abs()
+        .max((req.truth_m[1] - req.prior_m[1]).abs());
+    let half_size_m = radius_m.max(offset) + half_ortho_m + PATCH_MARGIN_M;
+    let rendered = match cache.filter(|c| c.serves(layers)) {
+        Some(c) => c.render(
+            layers,
+            req.prior_m,
+            half_size_m,
+            req.truth_seed,
+            req.orbital_seed,
+            &s.orbital,
+        ),
+        None => patch_grid(layers, req.prior_m, half_size_m).and_then(|(geo, n)| {
+            let patch = truth_patch_on(layers, geo, n, req.truth_seed, None, None);
+            let orbital = render_orbital_with(&patch, &s.orbital, req.orbital_seed, None)?;
+            Ok(Arc::new(Rendered { patch, orbital }))
+        }),
+    }?;
+    let rover = render_rover(&rendered.patch, req.truth_m, &s.rover, rover_seed)?;
+    Ok(ActivityImagery { rendered, rover })
+}
+
 /// Run one onboard localization activity on `layers` (the scenario's map).
 ///
 /// Never panics on bad geometry: a search window off the map, or imaging that cannot be
@@ -418,39 +488,16 @@ pub fn run_onboard_with(
         ..s.matcher
     };
     // One patch covers the search window around the prior and the rover's view around the truth.
-    let half_ortho_m = 0.5 * ORTHO_SIZE_PX as f64 * ORTHO_RESOLUTION_M_PER_PX;
-    let offset = (req.truth_m[0] - req.prior_m[0])
-        .abs()
-        .max((req.truth_m[1] - req.prior_m[1]).abs());
-    let half_size_m = radius_m.max(offset) + half_ortho_m + PATCH_MARGIN_M;
     let mut sol_rng = ChaCha8Rng::seed_from_u64(req.sol_seed);
     let rover_seed = rand::RngExt::random::<u64>(&mut sol_rng);
-    let rendered = match cache.filter(|c| c.serves(layers)) {
-        Some(c) => c.render(
-            layers,
-            req.prior_m,
-            half_size_m,
-            req.truth_seed,
-            req.orbital_seed,
-            &s.orbital,
-        ),
-        None => patch_grid(layers, req.prior_m, half_size_m).and_then(|(geo, n)| {
-            let patch = truth_patch_on(layers, geo, n, req.truth_seed, None, None);
-            let orbital = render_orbital_with(&patch, &s.orbital, req.orbital_seed, None)?;
-            Ok(Arc::new(Rendered { patch, orbital }))
-        }),
-    }
-    .and_then(|r| {
-        let rover = render_rover(&r.patch, req.truth_m, &s.rover, rover_seed)?;
-        Ok((r, rover))
-    });
-    let (rendered, rover) = match rendered {
+    let imagery = match render_activity_imagery(layers, cache, req, s, radius_m, rover_seed) {
         Ok(v) => v,
         Err(e) => {
             run.lost_reason = Some(LostReason::NoImagery(e));
             return run;
         }
     };
+    let (rendered, rover) = (&imagery.rendered, &imagery.rover);
     let orbital = &rendered.orbital;
     let geos = [
         rover.ortho.geo,

@@ -34,6 +34,8 @@
 //!     [`Ellipse::mmgis_angle_deg`] for MMGIS) and a conservative disc radius, 3 × the 1σ
 //!     semi-major axis: the radius the simulator's keep-out zones would grow by.
 //!   - [`ParticleFilter::modes`]: the clusters of the belief, to see multi-modality.
+//! - [`localize_panorama`]: the filter as a one-panorama localizer (prior disc, one update,
+//!   accepted or rejected as ambiguous or for no gain), as the simulator runs it.
 //!
 //! One update costs about 6 ms with the particles within a 6 m disc and 13-20 ms within the
 //! simulator's 30 m disc (a 64 m square of particles), for N = 1000 and 5000 alike: the score
@@ -83,6 +85,7 @@
 mod filter;
 mod likelihood;
 mod motion;
+mod panorama;
 mod params;
 mod posterior;
 mod resample;
@@ -93,6 +96,7 @@ mod update;
 pub use filter::{ParticleFilter, SkipReason, UpdateReport};
 pub use likelihood::likelihood_grid;
 pub use motion::{MotionModel, Odometry, Prior};
+pub use panorama::{PanoramaFix, PanoramaFixSettings, localize_panorama, no_gain};
 pub use params::{KldParams, ParticleParams, Resampling};
 pub use posterior::{Ellipse, Mode, Posterior};
 pub use resample::{effective_sample_size, kld_sample_count, systematic_indices};

@@ -198,6 +198,7 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
                     matched_error_m: None,
                     sigma_m: None,
                     search_radius_m: None,
+                    ellipse: None,
                     uncertainty_after_m: state.uncertainty.radius_m(&c.model),
                     start_lmst: None,
                     duration_s: None,

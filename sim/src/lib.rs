@@ -46,6 +46,7 @@ pub mod campaign;
 pub mod campaign_error;
 pub mod edt;
 pub mod errors;
+mod filter_localization;
 pub mod localizer;
 pub mod outcome;
 pub mod planning_grid;

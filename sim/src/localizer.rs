@@ -1,7 +1,7 @@
 //! Onboard global localization, as the simulator sees it: a result (an error relative to the
 //! truth and the localizer's reported σ) or a rejection with a reason.
 //!
-//! Two localizers ([`OnboardLocalizer`]), chosen per scenario with
+//! The localizers ([`OnboardLocalizer`]), chosen per scenario with
 //! `[onboard_localization] localizer = "…"`:
 //!
 //! - `"census"`, `"ncc"`, `"mi"` — [`ImageryLocalizer`]: the real thing. Post-drive imagery is
@@ -9,6 +9,9 @@
 //!   rover's *estimate*, and the result goes through the co-processor model
 //!   ([`localization::onboard::run_onboard`]); the HBS steps are sol-log events and the
 //!   activity's duration sits in the sol timeline.
+//! - `"particle"` — [`ParticleLocalizer`]: paper 002's particle filter on the same rendered
+//!   imagery, weighted by the census score surface.
+//! - `"ekf"` — [`EkfLocalizer`]: paper 004's EKF, the parked rover ranging to an orbiter.
 //! - `"statistical"` (the default) — [`StatisticalLocalizer`]: a model of the published flight
 //!   accuracy (paper 000 §4: 264 panoramas, mean 0.36 m, 99 % within 0.93 m, no outliers). The
 //!   radial error is Weibull-distributed with shape and scale solved so that its mean and 99th
@@ -22,9 +25,11 @@
 use std::sync::Arc;
 
 use crate::outcome::RejectionReason;
+use localization::ekf::ParkedSettings;
 use localization::hbs::HbsParams;
 use localization::matcher::Method;
 use localization::onboard::{OnboardCache, OnboardSettings};
+use localization::particle::PanoramaFixSettings;
 use maps::MapLayers;
 use rand::RngExt;
 use rand_chacha::ChaCha8Rng;
@@ -65,15 +70,22 @@ pub enum OnboardLocalizer {
     Statistical(StatisticalLocalizer),
     /// Image matching on rendered post-drive imagery, through the co-processor model.
     Imagery(Box<ImageryLocalizer>),
+    /// The particle filter of paper 002 on the census score surface of the post-drive imagery.
+    Particle(Box<ParticleLocalizer>),
+    /// The EKF of paper 004: the parked rover ranging to an orbiter through one pass.
+    Ekf(EkfLocalizer),
 }
 
 impl OnboardLocalizer {
-    /// The name used in scenario files and outputs: `statistical`, `census`, `ncc` or `mi`.
+    /// The name used in scenario files and outputs: `statistical`, `census`, `ncc`, `mi`,
+    /// `particle` or `ekf`.
     #[must_use]
     pub fn name(&self) -> &'static str {
         match self {
             OnboardLocalizer::Statistical(_) => "statistical",
             OnboardLocalizer::Imagery(i) => i.settings.matcher.method.name(),
+            OnboardLocalizer::Particle(_) => "particle",
+            OnboardLocalizer::Ekf(_) => "ekf",
         }
     }
 
@@ -84,6 +96,8 @@ impl OnboardLocalizer {
         match self {
             OnboardLocalizer::Statistical(s) => s.hbs,
             OnboardLocalizer::Imagery(i) => i.settings.hbs,
+            OnboardLocalizer::Particle(p) => p.settings.hbs,
+            OnboardLocalizer::Ekf(e) => e.hbs,
         }
     }
 
@@ -92,8 +106,69 @@ impl OnboardLocalizer {
         match self {
             OnboardLocalizer::Statistical(s) => s.hbs.link_bytes_per_s = link_bytes_per_s,
             OnboardLocalizer::Imagery(i) => i.settings.hbs.link_bytes_per_s = link_bytes_per_s,
+            OnboardLocalizer::Particle(p) => p.settings.hbs.link_bytes_per_s = link_bytes_per_s,
+            OnboardLocalizer::Ekf(e) => e.hbs.link_bytes_per_s = link_bytes_per_s,
         }
     }
+}
+
+/// The particle filter of paper 002 as the post-drive localizer.
+///
+/// Each localization renders the post-drive imagery at the rover's true position (as the
+/// image-matching localizers do) and runs
+/// [`localize_panorama`](localization::particle::localize_panorama): particles drawn from the
+/// uncertainty disc around the estimate (read as 3σ), one measurement update with the census
+/// score surface, accepted when the belief has one mode and its disc — 3 × the 1σ semi-major
+/// axis of the posterior covariance — is smaller than the rover's. The estimate then moves to
+/// the posterior mean and the disc becomes the localizer's σ in the uncertainty margin;
+/// otherwise the rejection says why (several modes: perceptual aliasing; no gain; nothing
+/// scored).
+///
+/// It runs on the co-processor like the census matcher (its cost is the same score surface),
+/// so it is planned with the image-matching chain's durations; the co-processor's upsets are
+/// not modelled for it.
+#[derive(Clone, Debug)]
+pub struct ParticleLocalizer {
+    /// The map the imagery is rendered from.
+    pub layers: Arc<MapLayers>,
+    /// Imaging, orbital products, matcher (census unless changed) and co-processor settings.
+    pub settings: OnboardSettings,
+    /// The filter and its verdict (default: [`PanoramaFixSettings::default`]).
+    pub fix: PanoramaFixSettings,
+    /// Renders shared with the other runs of the scenario (see [`ImageryLocalizer::cache`]).
+    pub cache: Arc<OnboardCache>,
+}
+
+impl ParticleLocalizer {
+    /// A particle localizer on `layers` with default settings.
+    #[must_use]
+    pub fn new(layers: Arc<MapLayers>) -> Self {
+        let settings = OnboardSettings::default();
+        let cache = Arc::new(OnboardCache::new(Arc::clone(&layers), &settings.orbital));
+        Self {
+            layers,
+            settings,
+            fix: PanoramaFixSettings::default(),
+            cache,
+        }
+    }
+}
+
+/// The EKF of paper 004 as the post-drive localizer: the parked rover ranges to the orbiter
+/// through one pass ([`localization::ekf::parked_fix`]); the filter starts at the estimate with
+/// the uncertainty disc as 3σ, and its final 2×2 position covariance becomes the disc
+/// (3 × the 1σ semi-major axis). Rejected when the filter could not run or ends with a disc no
+/// smaller than the prior's.
+///
+/// Its activity takes the onboard localization chain's slot in the sol plan at the
+/// statistical model's planned durations: the pass itself is not scheduled against the
+/// calendar's relay passes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct EkfLocalizer {
+    /// Ranging, pass and terrain-fix settings.
+    pub settings: ParkedSettings,
+    /// The chain's planned durations (the link rate is the scenario's).
+    pub hbs: HbsParams,
 }
 
 impl Default for OnboardLocalizer {

@@ -109,6 +109,9 @@ pub enum RejectionReason {
     /// The image-matching activity was lost: no imagery for the search window, or the
     /// co-processor's checksums, timeouts, comparison or the result's validity checks.
     Onboard(LostReason),
+    /// A filter localizer (particle, EKF) refused its own result: a belief with several modes,
+    /// no gain over the prior, nothing to update with. The sentence says which.
+    Filter(String),
 }
 
 impl fmt::Display for RejectionReason {
@@ -118,6 +121,7 @@ impl fmt::Display for RejectionReason {
                 f.write_str("validity checks failed: ambiguous map match")
             }
             RejectionReason::Onboard(reason) => reason.fmt(f),
+            RejectionReason::Filter(reason) => write!(f, "filter: {reason}"),
         }
     }
 }
@@ -263,6 +267,37 @@ impl Serialize for SkipReason {
     }
 }
 
+/// A filter's 1σ position ellipse, with the angle MMGIS draws it at.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct PositionEllipse {
+    /// Semi-major axis, metres.
+    pub semi_major_m: f64,
+    /// Semi-minor axis, metres.
+    pub semi_minor_m: f64,
+    /// Azimuth of the major axis, degrees east of north, `[0, 180)`.
+    pub azimuth_deg: f64,
+    /// MMGIS's angle for `xAxisProp` = semi-major, `yAxisProp` = semi-minor, degrees.
+    pub mmgis_angle_deg: f64,
+    /// The disc the keep-out zones grow by: 3 × the semi-major axis, metres.
+    pub disc_radius_m: f64,
+}
+
+impl PositionEllipse {
+    /// The ellipse of a 2×2 position covariance (m², east and north), or `None` if it is not
+    /// a covariance.
+    #[must_use]
+    pub fn from_covariance(cov_m2: &[[f64; 2]; 2]) -> Option<Self> {
+        let e = localization::particle::Ellipse::try_from_covariance(cov_m2)?;
+        Some(Self {
+            semi_major_m: e.semi_major_m,
+            semi_minor_m: e.semi_minor_m,
+            azimuth_deg: e.azimuth_deg,
+            mmgis_angle_deg: e.mmgis_angle_deg(),
+            disc_radius_m: 3.0 * e.semi_major_m,
+        })
+    }
+}
+
 /// A localization at the start (ground) or end (onboard) of a sol.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct LocalizationEvent {
@@ -285,6 +320,10 @@ pub struct LocalizationEvent {
     pub sigma_m: Option<f64>,
     /// Search radius of an image-matching localization, metres.
     pub search_radius_m: Option<f64>,
+    /// A filter localizer's (particle, EKF) 1σ position ellipse after its update, whether or
+    /// not the result was applied (`None` for the other localizers, or when the filter did
+    /// not run).
+    pub ellipse: Option<PositionEllipse>,
     /// Uncertainty radius after the event, metres.
     pub uncertainty_after_m: f64,
     /// When the activity started, LMST `HH:MM` (`None` for a ground localization, which

@@ -19,6 +19,7 @@ use crate::astar::AStar;
 use crate::autonav::{DriveContext, DriveLimits, DriveResult, RoverState, VoSource, drive_sol};
 use crate::campaign::Campaign;
 use crate::errors::SolErrors;
+use crate::filter_localization::{ekf_localization, particle_localization};
 use crate::localizer::{ImageryLocalizer, LocalizationResult, OnboardLocalizer};
 use crate::outcome::{
     ActivityStep, LocalizationEvent, LocalizationKind, LocalizationStep, RejectionReason,
@@ -42,7 +43,11 @@ pub(crate) fn chain_durations(localizer: &OnboardLocalizer) -> ChainDurations {
         OnboardLocalizer::Imagery(i) => {
             i.settings.hbs_slowdown * localization::onboard::MEASURED_FLIGHT_SIZE_RUN_S
         }
-        OnboardLocalizer::Statistical(_) => hbs.run_s,
+        // The particle filter's cost is the census score surface over the same window.
+        OnboardLocalizer::Particle(p) => {
+            p.settings.hbs_slowdown * localization::onboard::MEASURED_FLIGHT_SIZE_RUN_S
+        }
+        OnboardLocalizer::Statistical(_) | OnboardLocalizer::Ekf(_) => hbs.run_s,
     };
     ChainDurations {
         transfer_s: (localization::onboard::FLIGHT_SIZE_LINK_BYTES as f64 / hbs.link_bytes_per_s)
@@ -68,6 +73,7 @@ fn statistical_localization(
         matched_error_m: None,
         sigma_m: None,
         search_radius_m: None,
+        ellipse: None,
         uncertainty_after_m: 0.0,
         start_lmst: Some(start.lmst()),
         duration_s: None,
@@ -126,6 +132,7 @@ fn imagery_localization(
             .map(|m| (m.position_m[0] - truth.x).hypot(m.position_m[1] - truth.y)),
         sigma_m: None,
         search_radius_m: Some(run.search_radius_m),
+        ellipse: None,
         uncertainty_after_m: 0.0,
         start_lmst: Some(start.lmst()),
         duration_s: Some(run.log.duration_s),
@@ -268,6 +275,14 @@ fn localize(
         OnboardLocalizer::Imagery(loc) => {
             let sol_seed = rand::RngExt::random::<u64>(st.rng);
             imagery_localization(loc, c, st.rover, start, sol_seed)
+        }
+        OnboardLocalizer::Particle(loc) => {
+            let sol_seed = rand::RngExt::random::<u64>(st.rng);
+            particle_localization(loc, c, st.rover, start, sol_seed)
+        }
+        OnboardLocalizer::Ekf(loc) => {
+            let seed = rand::RngExt::random::<u64>(st.rng);
+            ekf_localization(loc, c, st.rover, start, seed)
         }
     };
     let mut durations = [None; LOCALIZATION_CHAIN.len()];

@@ -16,8 +16,10 @@ use crate::error::ScenarioError;
 mod raw;
 
 use crate::expect::{Expectation, Mismatch, StatisticalExpectation};
+use localization::ekf::ParkedSettings;
 use localization::matcher::Method;
 use localization::onboard::OnboardSettings;
+use localization::particle::{KldParams, ParticleParams, Resampling};
 use maps::{GeoTransform, MapLayers, MemoryBudget, ZoneSet};
 pub use raw::RawScenario;
 use raw::{RawErrors, RawPerTerrain};
@@ -25,7 +27,9 @@ use sim::autonav::{PerTerrain, RoverParams};
 use sim::calendar::{Calendar, HistoricSol, Planning, SolEntry};
 use sim::campaign::{self, Campaign};
 use sim::errors::{ErrorModel, ErrorPreset};
-use sim::localizer::{ImageryLocalizer, OnboardLocalizer, StatisticalLocalizer};
+use sim::localizer::{
+    EkfLocalizer, ImageryLocalizer, OnboardLocalizer, ParticleLocalizer, StatisticalLocalizer,
+};
 use sim::outcome::LegClearance;
 use sim::planning_grid::{GridParams, PlanningGrid};
 use sim::time::SOL_S;
@@ -58,6 +62,15 @@ const MIN_GRID_RESOLUTION_M: f64 = 0.01;
 const MAX_GRID_RESOLUTION_M: f64 = 50.0;
 /// Image-matching localizer run-time multiplier on the co-processor.
 const MAX_HBS_SLOWDOWN: f64 = 1_000.0;
+/// Particle-filter particles: below 100 a 30 m prior is sampled a particle per 9 m²; above
+/// 100 000 an update holds hundreds of MB and takes seconds.
+const MIN_PARTICLES: u32 = 100;
+/// See [`MIN_PARTICLES`].
+const MAX_PARTICLES: u32 = 100_000;
+/// Radio-range noise and satellite image resolution (EKF), m: paper 004 Table 1 has 0.25 to 10.
+const MAX_RANGE_SIGMA_M: f64 = 100.0;
+/// One orbiter pass of EKF ranging, s: a low orbiter is visible for under an hour.
+const MAX_PASS_S: u32 = 3_600;
 /// HBS serial link rate, KB/s: 10 flown, 40 possible (paper 000 §6). Below 1 KB/s the
 /// flight-size inputs would take over five hours, beyond a sol's activities; above 1000 it is
 /// not this serial link.
@@ -171,6 +184,23 @@ pub enum LocalizerSpec {
         /// Run-time multiplier on the co-processor.
         hbs_slowdown: f64,
     },
+    /// Paper 002's particle filter on the census score surface.
+    Particle {
+        /// Particle count and resampling.
+        params: ParticleParams,
+        /// Run-time multiplier on the co-processor.
+        hbs_slowdown: f64,
+    },
+    /// Paper 004's EKF, the parked rover ranging through one orbiter pass.
+    Ekf(ParkedSettings),
+}
+
+/// Which localizer `onboard_localization.localizer` names.
+enum LocalizerKind {
+    Statistical,
+    Imagery(Method),
+    Particle,
+    Ekf,
 }
 
 /// One item of a scenario's memory budget: the field it comes from, its bytes, and for a
@@ -434,40 +464,55 @@ impl ScenarioSpec {
         };
         let l = raw.onboard_localization;
         let localizer_name = l.localizer.as_deref().unwrap_or("statistical");
-        let method = match localizer_name {
-            "statistical" => None,
-            name => Some(Method::from_name(name).ok_or_else(|| {
+        let kind = match localizer_name {
+            "statistical" => LocalizerKind::Statistical,
+            "particle" => LocalizerKind::Particle,
+            "ekf" => LocalizerKind::Ekf,
+            name => LocalizerKind::Imagery(Method::from_name(name).ok_or_else(|| {
                 ScenarioError::field(
                     path,
                     "onboard_localization.localizer",
-                    "\"statistical\", \"census\", \"ncc\" or \"mi\"",
+                    "\"statistical\", \"census\", \"ncc\", \"mi\", \"particle\" or \"ekf\"",
                     format!("{name:?}"),
                 )
             })?),
         };
-        if method.is_some() {
-            for (field, given) in [
-                ("mean_error_m", l.mean_error_m.is_some()),
-                ("p99_error_m", l.p99_error_m.is_some()),
-                ("failure_rate", l.failure_rate.is_some()),
-                ("reported_sigma_m", l.reported_sigma_m.is_some()),
-            ] {
-                if given {
-                    return Err(ScenarioError::field(
-                        path,
-                        format!("onboard_localization.{field}"),
-                        "no value: it sets the statistical localizer only",
-                        format!("a value with localizer = {localizer_name:?}"),
-                    ));
-                }
+        // Each setting belongs to some localizers; given with another, it is refused rather
+        // than silently ignored.
+        const STATISTICAL: &[&str] = &["statistical"];
+        const ON_HBS: &[&str] = &["census", "ncc", "mi", "particle"];
+        const PARTICLE: &[&str] = &["particle"];
+        const EKF: &[&str] = &["ekf"];
+        let owned: [(&str, bool, &[&str]); 11] = [
+            ("mean_error_m", l.mean_error_m.is_some(), STATISTICAL),
+            ("p99_error_m", l.p99_error_m.is_some(), STATISTICAL),
+            ("failure_rate", l.failure_rate.is_some(), STATISTICAL),
+            (
+                "reported_sigma_m",
+                l.reported_sigma_m.is_some(),
+                STATISTICAL,
+            ),
+            ("hbs_slowdown", l.hbs_slowdown.is_some(), ON_HBS),
+            ("particle_count", l.particle_count.is_some(), PARTICLE),
+            ("resampling", l.resampling.is_some(), PARTICLE),
+            ("range_sigma_m", l.range_sigma_m.is_some(), EKF),
+            ("pass_duration_s", l.pass_duration_s.is_some(), EKF),
+            ("elevation_mask_deg", l.elevation_mask_deg.is_some(), EKF),
+            ("image_resolution_m", l.image_resolution_m.is_some(), EKF),
+        ];
+        for (field, given, owners) in owned {
+            if given && !owners.contains(&localizer_name) {
+                return Err(ScenarioError::field(
+                    path,
+                    format!("onboard_localization.{field}"),
+                    format!(
+                        "no value: it sets the {} localizer{} only",
+                        owners.join(", "),
+                        if owners.len() > 1 { "s" } else { "" }
+                    ),
+                    format!("a value with localizer = {localizer_name:?}"),
+                ));
             }
-        } else if l.hbs_slowdown.is_some() {
-            return Err(ScenarioError::field(
-                path,
-                "onboard_localization.hbs_slowdown",
-                "no value: it sets the image-matching localizers (census, ncc, mi) only",
-                "a value with localizer = \"statistical\"",
-            ));
         }
         let hbs_slowdown =
             l.hbs_slowdown
@@ -479,6 +524,78 @@ impl ScenarioSpec {
                         "seconds per second",
                     )
                 })?;
+        let mut particle = ParticleParams::default();
+        if let Some(n) = l.particle_count {
+            if !(MIN_PARTICLES..=MAX_PARTICLES).contains(&n) {
+                return Err(ScenarioError::field(
+                    path,
+                    "onboard_localization.particle_count",
+                    format!("{MIN_PARTICLES} ..= {MAX_PARTICLES} particles"),
+                    n,
+                ));
+            }
+            particle.particle_count = n as usize;
+        }
+        if let Some(r) = &l.resampling {
+            particle.resampling = match r.as_str() {
+                "systematic" => Resampling::Systematic,
+                "kld" => Resampling::Kld(KldParams::default()),
+                other => {
+                    return Err(ScenarioError::field(
+                        path,
+                        "onboard_localization.resampling",
+                        "\"systematic\" or \"kld\"",
+                        format!("{other:?}"),
+                    ));
+                }
+            };
+        }
+        let pd = ParkedSettings::default();
+        let ekf = ParkedSettings {
+            range_sigma_m: l.range_sigma_m.map_or(Ok(pd.range_sigma_m), |v| {
+                c.positive_at_most(
+                    "onboard_localization.range_sigma_m",
+                    v,
+                    MAX_RANGE_SIGMA_M,
+                    "metres",
+                )
+            })?,
+            pass_duration_s: match l.pass_duration_s {
+                None => pd.pass_duration_s,
+                Some(v) if (60..=MAX_PASS_S).contains(&v) => v,
+                Some(v) => {
+                    return Err(ScenarioError::field(
+                        path,
+                        "onboard_localization.pass_duration_s",
+                        format!("60 ..= {MAX_PASS_S} seconds"),
+                        v,
+                    ));
+                }
+            },
+            elevation_mask_deg: l
+                .elevation_mask_deg
+                .map_or(Ok(pd.elevation_mask_deg), |v| {
+                    c.in_range(
+                        "onboard_localization.elevation_mask_deg",
+                        v,
+                        0.0,
+                        80.0,
+                        "degrees",
+                    )
+                })?,
+            image_resolution_m: l
+                .image_resolution_m
+                .map(|v| {
+                    c.positive_at_most(
+                        "onboard_localization.image_resolution_m",
+                        v,
+                        MAX_RANGE_SIGMA_M,
+                        "metres per pixel",
+                    )
+                })
+                .transpose()?,
+            ..pd
+        };
         let hbs_link_bytes_per_s = 1_000.0
             * l.hbs_link_rate_kb_per_s
                 .map_or(Ok(DEFAULT_HBS_LINK_RATE_KB_PER_S), |v| {
@@ -894,12 +1011,17 @@ impl ScenarioSpec {
             rover,
             model,
             hbs_link_bytes_per_s,
-            localizer: match method {
-                None => LocalizerSpec::Statistical(statistical),
-                Some(method) => LocalizerSpec::Imagery {
+            localizer: match kind {
+                LocalizerKind::Statistical => LocalizerSpec::Statistical(statistical),
+                LocalizerKind::Imagery(method) => LocalizerSpec::Imagery {
                     method,
                     hbs_slowdown,
                 },
+                LocalizerKind::Particle => LocalizerSpec::Particle {
+                    params: particle,
+                    hbs_slowdown,
+                },
+                LocalizerKind::Ekf => LocalizerSpec::Ekf(ekf),
             },
             operator_margin_m,
             post_drive_imaging_s,
@@ -1136,6 +1258,19 @@ impl Scenario {
                 imagery.settings.hbs_slowdown = hbs_slowdown;
                 OnboardLocalizer::Imagery(Box::new(imagery))
             }
+            LocalizerSpec::Particle {
+                params,
+                hbs_slowdown,
+            } => {
+                let mut particle = ParticleLocalizer::new(Arc::clone(&layers));
+                particle.fix.params = params;
+                particle.settings.hbs_slowdown = hbs_slowdown;
+                OnboardLocalizer::Particle(Box::new(particle))
+            }
+            LocalizerSpec::Ekf(settings) => OnboardLocalizer::Ekf(EkfLocalizer {
+                settings,
+                ..EkfLocalizer::default()
+            }),
         };
         localizer.set_link_bytes_per_s(spec.hbs_link_bytes_per_s);
         let campaign = Campaign {

@@ -420,6 +420,13 @@ fn prepare(dir: &Path, fresh: Manifest, resume: bool) -> Result<Manifest, SweepE
     }
     std::fs::create_dir_all(dir).map_err(|e| io(dir, "cannot create the directory", e))?;
     let Some(mut found) = Manifest::read(dir)? else {
+        // A kill during the first manifest's write leaves only its temporary file: the
+        // directory is this sweep's, with nothing in it yet.
+        let half_written = tmp_path(&dir.join(MANIFEST));
+        if half_written.is_file() {
+            std::fs::remove_file(&half_written)
+                .map_err(|e| io(&half_written, "cannot remove", e))?;
+        }
         let mut entries = std::fs::read_dir(dir).map_err(|e| io(dir, "cannot list", e))?;
         if let Some(Ok(e)) = entries.next() {
             return Err(SweepError::option(

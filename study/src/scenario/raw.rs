@@ -122,6 +122,12 @@ pub(crate) struct RawLocalizer {
     pub(crate) failure_rate: Option<f64>,
     pub(crate) reported_sigma_m: Option<f64>,
     pub(crate) operator_margin_m: Option<f64>,
+    pub(crate) particle_count: Option<u32>,
+    pub(crate) resampling: Option<String>,
+    pub(crate) range_sigma_m: Option<f64>,
+    pub(crate) pass_duration_s: Option<u32>,
+    pub(crate) elevation_mask_deg: Option<f64>,
+    pub(crate) image_resolution_m: Option<f64>,
 }
 
 #[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
