@@ -107,6 +107,30 @@ struct Outcome {
     time_s: f64,
 }
 
+impl Outcome {
+    /// It could not run (no usable input), after `time_s`.
+    fn not_run(time_s: f64) -> Self {
+        Self {
+            error_m: None,
+            accepted: false,
+            ran: false,
+            radius_m: None,
+            time_s,
+        }
+    }
+
+    /// It ran and refused its result (`error_m`: the refused result's error, if any).
+    fn rejected(error_m: Option<f64>, time_s: f64) -> Self {
+        Self {
+            error_m,
+            accepted: false,
+            ran: true,
+            radius_m: None,
+            time_s,
+        }
+    }
+}
+
 /// One row of the comparison.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct ComparisonRow {
@@ -151,22 +175,7 @@ fn matcher_row(
     rendered: Result<(&OrbitalMap<'_>, &RoverImages<'_>), &str>,
     params: &MatchParams,
 ) -> (CaseResult, f64) {
-    let mut row = CaseResult {
-        id: case.id,
-        terrain: case.terrain,
-        wedges: case.wedges,
-        lighting: case.lighting,
-        truth_m,
-        prior_m,
-        estimate_m: None,
-        error_m: None,
-        sigma_m: None,
-        peak_ratio: None,
-        valid_fraction: None,
-        rejection: None,
-        failure: None,
-        heading_error_deg: None,
-    };
+    let mut row = CaseResult::pending(case, truth_m, prior_m);
     let (map, images) = match rendered {
         Ok(v) => v,
         Err(e) => {
@@ -177,17 +186,7 @@ fn matcher_row(
     let start = Instant::now();
     let result = localize(map, images, prior_m, params);
     let time_s = start.elapsed().as_secs_f64();
-    match result {
-        Ok(m) => {
-            row.estimate_m = Some(m.position_m);
-            row.error_m = Some((m.position_m[0] - truth_m[0]).hypot(m.position_m[1] - truth_m[1]));
-            row.sigma_m = Some(m.sigma_m);
-            row.peak_ratio = Some(m.peak_ratio);
-            row.valid_fraction = Some(m.valid_fraction);
-            row.rejection = m.rejection;
-        }
-        Err(e) => row.failure = Some(e.to_string()),
-    }
+    row.record(result);
     (row, time_s)
 }
 
@@ -251,13 +250,7 @@ fn run_case(
                         radius_m: Some(sigma_m),
                         time_s,
                     },
-                    LocalizationResult::Rejected { .. } => Outcome {
-                        error_m: None,
-                        accepted: false,
-                        ran: true,
-                        radius_m: None,
-                        time_s,
-                    },
+                    LocalizationResult::Rejected { .. } => Outcome::rejected(None, time_s),
                 }
             }
             Candidate::Matcher(method) => {
@@ -274,13 +267,7 @@ fn run_case(
                 outcome
             }
             Candidate::Particle => match views {
-                Err(_) => Outcome {
-                    error_m: None,
-                    accepted: false,
-                    ran: false,
-                    radius_m: None,
-                    time_s: 0.0,
-                },
+                Err(_) => Outcome::not_run(0.0),
                 Ok((map, images)) => {
                     let start = Instant::now();
                     let fix = localize_panorama(
@@ -301,20 +288,10 @@ fn run_case(
                             radius_m: Some(post.disc_radius_m),
                             time_s,
                         },
-                        Ok(PanoramaFix::Rejected { posterior, .. }) => Outcome {
-                            error_m: posterior.map(|p| error_of(p.mean_m)),
-                            accepted: false,
-                            ran: true,
-                            radius_m: None,
-                            time_s,
-                        },
-                        Err(_) => Outcome {
-                            error_m: None,
-                            accepted: false,
-                            ran: false,
-                            radius_m: None,
-                            time_s,
-                        },
+                        Ok(PanoramaFix::Rejected { posterior, .. }) => {
+                            Outcome::rejected(posterior.map(|p| error_of(p.mean_m)), time_s)
+                        }
+                        Err(_) => Outcome::not_run(time_s),
                     }
                 }
             },
@@ -336,13 +313,7 @@ fn run_case(
                             time_s,
                         }
                     }
-                    Err(_) => Outcome {
-                        error_m: None,
-                        accepted: false,
-                        ran: false,
-                        radius_m: None,
-                        time_s,
-                    },
+                    Err(_) => Outcome::not_run(time_s),
                 }
             }
         };

@@ -307,6 +307,47 @@ pub struct CaseResult {
     pub heading_error_deg: Option<f64>,
 }
 
+impl CaseResult {
+    /// The row of `case` before localization: its truth and prior, nothing estimated yet.
+    #[must_use]
+    pub fn pending(case: &BenchmarkCase, truth_m: [f64; 2], prior_m: [f64; 2]) -> Self {
+        Self {
+            id: case.id,
+            terrain: case.terrain,
+            wedges: case.wedges,
+            lighting: case.lighting,
+            truth_m,
+            prior_m,
+            estimate_m: None,
+            error_m: None,
+            sigma_m: None,
+            peak_ratio: None,
+            valid_fraction: None,
+            rejection: None,
+            failure: None,
+            heading_error_deg: None,
+        }
+    }
+
+    /// Record the matcher's outcome: its estimate, error, σ, peak ratio, valid fraction and
+    /// verdict, or the failure.
+    pub fn record(&mut self, result: Result<crate::matcher::MatchResult, impl std::fmt::Display>) {
+        match result {
+            Ok(m) => {
+                self.estimate_m = Some(m.position_m);
+                self.error_m = Some(
+                    (m.position_m[0] - self.truth_m[0]).hypot(m.position_m[1] - self.truth_m[1]),
+                );
+                self.sigma_m = Some(m.sigma_m);
+                self.peak_ratio = Some(m.peak_ratio);
+                self.valid_fraction = Some(m.valid_fraction);
+                self.rejection = m.rejection;
+            }
+            Err(e) => self.failure = Some(e.to_string()),
+        }
+    }
+}
+
 /// Error statistics over a set of cases, metres.
 #[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
 pub struct ErrorStats {
@@ -599,22 +640,7 @@ pub fn run_case(
     let CaseDraws {
         truth_m, prior_m, ..
     } = case_draws(case, layers);
-    let mut row = CaseResult {
-        id: case.id,
-        terrain: case.terrain,
-        wedges: case.wedges,
-        lighting: case.lighting,
-        truth_m,
-        prior_m,
-        estimate_m: None,
-        error_m: None,
-        sigma_m: None,
-        peak_ratio: None,
-        valid_fraction: None,
-        rejection: None,
-        failure: None,
-        heading_error_deg: None,
-    };
+    let mut row = CaseResult::pending(case, truth_m, prior_m);
     let (orbital, rover) = match render_case(case, layers, params.search_radius_m, imaging) {
         Ok((_, orbital, rover)) => (orbital, rover),
         Err(e) => {
@@ -632,17 +658,7 @@ pub fn run_case(
         ortho_valid: &rover.valid,
         dem: Some((&rover.dem, &rover.dem_valid)),
     };
-    match localize(&map, &images, prior_m, params) {
-        Ok(m) => {
-            row.estimate_m = Some(m.position_m);
-            row.error_m = Some((m.position_m[0] - truth_m[0]).hypot(m.position_m[1] - truth_m[1]));
-            row.sigma_m = Some(m.sigma_m);
-            row.peak_ratio = Some(m.peak_ratio);
-            row.valid_fraction = Some(m.valid_fraction);
-            row.rejection = m.rejection;
-        }
-        Err(e) => row.failure = Some(e.to_string()),
-    }
+    row.record(localize(&map, &images, prior_m, params));
     row
 }
 

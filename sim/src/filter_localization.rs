@@ -19,30 +19,11 @@ use rand_chacha::ChaCha8Rng;
 use crate::autonav::RoverState;
 use crate::campaign::Campaign;
 use crate::localizer::{EkfLocalizer, ParticleLocalizer};
-use crate::outcome::{LocalizationEvent, LocalizationKind, PositionEllipse, RejectionReason};
+use crate::outcome::{LocalizationEvent, PositionEllipse, RejectionReason};
 use crate::seeds::{Purpose, stream_seed};
 use crate::time::SolSeconds;
 use localization::onboard::{LostReason, OnboardRequest, render_activity_imagery};
 use localization::particle::{PanoramaFix, localize_panorama, no_gain};
-
-/// An onboard event of `localizer` that has not applied anything yet.
-fn pending_event(localizer: &'static str, start: SolSeconds) -> LocalizationEvent {
-    LocalizationEvent {
-        kind: LocalizationKind::Onboard,
-        localizer,
-        applied: false,
-        reason: None,
-        error_m: None,
-        matched_error_m: None,
-        sigma_m: None,
-        search_radius_m: None,
-        ellipse: None,
-        uncertainty_after_m: 0.0,
-        start_lmst: Some(start.lmst()),
-        duration_s: None,
-        steps: Vec::new(),
-    }
-}
 
 /// Apply a filter's posterior (mean `mean_m`, 1σ ellipse) if its disc is smaller than the
 /// radius `prior_r_m` the rover had; otherwise reject it for no gain.
@@ -82,7 +63,7 @@ pub(crate) fn particle_localization(
     start: SolSeconds,
     sol_seed: u64,
 ) -> LocalizationEvent {
-    let mut event = pending_event("particle", start);
+    let mut event = LocalizationEvent::pending_onboard("particle", start.lmst());
     let truth = state.truth.position_m;
     let estimate = state.estimate.position_m;
     let r = state.uncertainty.radius_m(&c.model);
@@ -159,7 +140,7 @@ pub(crate) fn ekf_localization(
     start: SolSeconds,
     seed: u64,
 ) -> LocalizationEvent {
-    let mut event = pending_event("ekf", start);
+    let mut event = LocalizationEvent::pending_onboard("ekf", start.lmst());
     let r = state.uncertainty.radius_m(&c.model);
     let offset = state.estimate.position_m - state.truth.position_m;
     if r > 0.0 {

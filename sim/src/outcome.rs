@@ -336,6 +336,29 @@ pub struct LocalizationEvent {
     pub steps: Vec<ActivityStep>,
 }
 
+impl LocalizationEvent {
+    /// An onboard event of `localizer` started at LMST `start_lmst` that has applied nothing
+    /// yet (every result field empty, the uncertainty after it still to be set).
+    #[must_use]
+    pub fn pending_onboard(localizer: &'static str, start_lmst: String) -> Self {
+        Self {
+            kind: LocalizationKind::Onboard,
+            localizer,
+            applied: false,
+            reason: None,
+            error_m: None,
+            matched_error_m: None,
+            sigma_m: None,
+            search_radius_m: None,
+            ellipse: None,
+            uncertainty_after_m: 0.0,
+            start_lmst: Some(start_lmst),
+            duration_s: None,
+            steps: Vec::new(),
+        }
+    }
+}
+
 /// One step of a localization activity in the sol log.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ActivityStep {

@@ -64,21 +64,7 @@ fn statistical_localization(
     state: &mut RoverState,
     start: SolSeconds,
 ) -> LocalizationEvent {
-    let mut event = LocalizationEvent {
-        kind: LocalizationKind::Onboard,
-        localizer: "statistical",
-        applied: false,
-        reason: None,
-        error_m: None,
-        matched_error_m: None,
-        sigma_m: None,
-        search_radius_m: None,
-        ellipse: None,
-        uncertainty_after_m: 0.0,
-        start_lmst: Some(start.lmst()),
-        duration_s: None,
-        steps: Vec::new(),
-    };
+    let mut event = LocalizationEvent::pending_onboard("statistical", start.lmst());
     match result {
         LocalizationResult::Accepted { error_m, sigma_m } => {
             state.estimate.position_m =
