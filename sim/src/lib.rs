@@ -49,6 +49,7 @@ pub mod errors;
 mod filter_localization;
 pub mod localizer;
 pub mod outcome;
+pub mod physics;
 pub mod planning_grid;
 pub mod policy;
 pub mod pose;
