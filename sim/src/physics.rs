@@ -3,6 +3,8 @@
 //!
 //! - [`incline_slide`]: a block on an incline under Mars gravity.
 //! - [`rolling_wheel`]: a wheel rolling down it, without slip or slipping.
+//! - [`drive_on_slope`]: a six-wheel rover ([`RoverBody`]) driving up, down or across it
+//!   ([`rover`](self) module docs: rigid contact makes slip a step at the friction angle).
 //!
 //! A block resting on a plane tilted by θ with Coulomb friction μ stays put when tan θ ≤ μ. Otherwise it
 //! slides with acceleration `g (sin θ − μ cos θ)`, so it covers `½ a t²` in `t` seconds. Rapier's
@@ -20,6 +22,10 @@
 use rapier3d_f64::prelude::*;
 
 use localization::ekf::MARS_SURFACE_GRAVITY_M_PER_S2;
+
+mod rover;
+
+pub use rover::{Heading, RoverBody, SlopeDrive, drive_on_slope};
 
 /// What [`incline_slide`] or [`rolling_wheel`] measured.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -148,6 +154,14 @@ impl Slope {
     fn new(slope_deg: f64, friction: f64) -> Self {
         Self {
             tilt: Rotation::from_rotation_z(-slope_deg.to_radians()),
+            friction,
+        }
+    }
+
+    /// The same slab tilted the other way: +x runs uphill.
+    fn uphill_x(slope_deg: f64, friction: f64) -> Self {
+        Self {
+            tilt: Rotation::from_rotation_z(slope_deg.to_radians()),
             friction,
         }
     }
