@@ -334,15 +334,8 @@ fn bench_pf(c: &mut Criterion) {
         &BenchmarkImaging::default(),
     )
     .expect("the benchmark case renders");
-    let map = OrbitalMap {
-        appearance: &orbital.appearance,
-        dem: Some(&orbital.dem),
-    };
-    let images = RoverImages {
-        ortho: &rover.ortho,
-        ortho_valid: &rover.valid,
-        dem: Some((&rover.dem, &rover.dem_valid)),
-    };
+    let map = OrbitalMap::of(&orbital);
+    let images = RoverImages::of(&rover);
     let match_params = MatchParams::default();
     let prior = Prior::from_uncertainty_disc(draws.prior_m, PRIOR_RADIUS_M);
     let off = |p: [f64; 2]| (p[0] - draws.truth_m[0]).hypot(p[1] - draws.truth_m[1]);

@@ -213,19 +213,9 @@ fn run_case(
     } else {
         Err("not rendered".into())
     };
-    let views = rendered.as_ref().map(|(_, orbital, rover)| {
-        (
-            OrbitalMap {
-                appearance: &orbital.appearance,
-                dem: Some(&orbital.dem),
-            },
-            RoverImages {
-                ortho: &rover.ortho,
-                ortho_valid: &rover.valid,
-                dem: Some((&rover.dem, &rover.dem_valid)),
-            },
-        )
-    });
+    let views = rendered
+        .as_ref()
+        .map(|(_, orbital, rover)| (OrbitalMap::of(orbital), RoverImages::of(rover)));
     let views = match &views {
         Ok((m, r)) => Ok((m, r)),
         Err(e) => Err(e.as_str()),
@@ -302,9 +292,7 @@ fn run_case(
                 let time_s = start.elapsed().as_secs_f64();
                 match fix {
                     Ok(fix) => {
-                        let c = fix.covariance_m2;
-                        let disc = localization::particle::Ellipse::try_from_covariance(&c)
-                            .map(|e| 3.0 * e.semi_major_m);
+                        let disc = fix.ellipse().map(|e| e.disc_radius_m());
                         Outcome {
                             error_m: Some(fix.error_enu_m[0].hypot(fix.error_enu_m[1])),
                             accepted: disc.is_some_and(|d| d < prior_r),

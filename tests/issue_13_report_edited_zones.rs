@@ -18,17 +18,7 @@ fn report_names_a_zones_file_edited_since_the_run() {
     let run = dir.path().join("run");
     run_ok(&["compare", "scenarios/sol383-386.toml", "--out"], &[&run]);
     let out = dir.path().join("report");
-    let report = |d: &Path, extra: &[&str]| {
-        solsim()
-            .current_dir(root())
-            .arg("report")
-            .arg(d)
-            .arg("--out")
-            .arg(&out)
-            .args(extra)
-            .output()
-            .expect("runs")
-    };
+    let report = |d: &Path, extra: &[&str]| common::report(d, &out, extra);
     // A zones file edited since the run (the scenario itself unchanged): named.
     let zones_dir = tempfile::tempdir().expect("tempdir");
     let zones_copy = zones_dir.path().join("zones.geojson");

@@ -8,7 +8,7 @@ mod common;
 
 use std::path::Path;
 
-use common::{assert_bad_input, root, run_ok, solsim, stderr};
+use common::{assert_bad_input, run_ok, solsim, stderr};
 
 fn read(p: &Path) -> String {
     std::fs::read_to_string(p).expect("readable")
@@ -97,17 +97,7 @@ fn report_refuses_a_directory_the_scenario_no_longer_gives() {
     let run = dir.path().join("run");
     run_ok(&["compare", "scenarios/sol383-386.toml", "--out"], &[&run]);
     let out = dir.path().join("report");
-    let report = |d: &Path, extra: &[&str]| {
-        solsim()
-            .current_dir(root())
-            .arg("report")
-            .arg(d)
-            .arg("--out")
-            .arg(&out)
-            .args(extra)
-            .output()
-            .expect("runs")
-    };
+    let report = |d: &Path, extra: &[&str]| common::report(d, &out, extra);
     // An edited sol log.
     let ground = run.join("sol383-386.ground.json");
     let text = read(&ground);

@@ -72,15 +72,8 @@ fn render(
     let patch = truth_patch(layers, truth_m, half_size_m, truth_seed).ok()?;
     let orbital = render_orbital(&patch, &OrbitalParams::default(), orbital_seed).ok()?;
     let rover = render_rover(&patch, truth_m, &rover_params, rover_seed).ok()?;
-    let map = OrbitalMap {
-        appearance: &orbital.appearance,
-        dem: Some(&orbital.dem),
-    };
-    let images = RoverImages {
-        ortho: &rover.ortho,
-        ortho_valid: &rover.valid,
-        dem: Some((&rover.dem, &rover.dem_valid)),
-    };
+    let map = OrbitalMap::of(&orbital);
+    let images = RoverImages::of(&rover);
     let surface = score_surface(&map, &images, truth_m, [WINDOW_M; 2], p).ok()?;
     Some(Case {
         terrain: case.terrain,

@@ -649,15 +649,8 @@ pub fn run_case(
         }
     };
     row.heading_error_deg = Some(rover.geometry_errors.heading_error_deg);
-    let map = OrbitalMap {
-        appearance: &orbital.appearance,
-        dem: Some(&orbital.dem),
-    };
-    let images = RoverImages {
-        ortho: &rover.ortho,
-        ortho_valid: &rover.valid,
-        dem: Some((&rover.dem, &rover.dem_valid)),
-    };
+    let map = OrbitalMap::of(&orbital);
+    let images = RoverImages::of(&rover);
     row.record(localize(&map, &images, prior_m, params));
     row
 }

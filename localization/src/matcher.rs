@@ -206,6 +206,29 @@ pub struct OrbitalMap<'a> {
     pub dem: Option<&'a Raster<f32>>,
 }
 
+impl<'a> OrbitalMap<'a> {
+    /// The appearance and DEM of rendered orbital products.
+    #[must_use]
+    pub fn of(products: &'a crate::synthetic::OrbitalProducts) -> Self {
+        Self {
+            appearance: &products.appearance,
+            dem: Some(&products.dem),
+        }
+    }
+}
+
+impl<'a> RoverImages<'a> {
+    /// The orthomosaic and rover DEM, with their validity, of a rendered rover observation.
+    #[must_use]
+    pub fn of(observation: &'a crate::synthetic::RoverObservation) -> Self {
+        Self {
+            ortho: &observation.ortho,
+            ortho_valid: &observation.valid,
+            dem: Some((&observation.dem, &observation.dem_valid)),
+        }
+    }
+}
+
 /// Why a match was rejected by its validity checks.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub enum Rejection {

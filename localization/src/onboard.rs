@@ -389,20 +389,13 @@ impl ActivityImagery {
     /// The orbital map of the patch: appearance and DEM as the orbiter sees them.
     #[must_use]
     pub fn orbital_map(&self) -> OrbitalMap<'_> {
-        OrbitalMap {
-            appearance: &self.rendered.orbital.appearance,
-            dem: Some(&self.rendered.orbital.dem),
-        }
+        OrbitalMap::of(&self.rendered.orbital)
     }
 
     /// The rover's images as the matcher takes them.
     #[must_use]
     pub fn rover_images(&self) -> RoverImages<'_> {
-        RoverImages {
-            ortho: &self.rover.ortho,
-            ortho_valid: &self.rover.valid,
-            dem: Some((&self.rover.dem, &self.rover.dem_valid)),
-        }
+        RoverImages::of(&self.rover)
     }
 }
 
@@ -533,15 +526,8 @@ pub fn run_onboard_with(
     // The fault-free run, once. The matcher is deterministic, so an HBS run on intact inputs
     // returns exactly these bytes; only a run on inputs an upset changed is computed again.
     let fault_free = localize(
-        &OrbitalMap {
-            appearance: &orbital.appearance,
-            dem: Some(&orbital.dem),
-        },
-        &RoverImages {
-            ortho: &rover.ortho,
-            ortho_valid: &rover.valid,
-            dem: Some((&rover.dem, &rover.dem_valid)),
-        },
+        &OrbitalMap::of(orbital),
+        &RoverImages::of(rover),
         req.prior_m,
         &params,
     )

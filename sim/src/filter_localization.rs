@@ -113,19 +113,13 @@ pub(crate) fn particle_localization(
             if let Some(post) = posterior {
                 event.matched_error_m =
                     Some((post.mean_m[0] - truth.x).hypot(post.mean_m[1] - truth.y));
-                event.ellipse = PositionEllipse::from_covariance(&post.covariance_m2);
+                event.ellipse = Some(PositionEllipse::from_ellipse(post.ellipse));
             }
             event.reason = Some(RejectionReason::Filter(reason));
         }
         Ok(PanoramaFix::Accepted(post)) => {
-            match PositionEllipse::from_covariance(&post.covariance_m2) {
-                Some(ellipse) => apply_if_gain(&mut event, c, state, r, post.mean_m, ellipse),
-                None => {
-                    event.reason = Some(RejectionReason::Filter(
-                        "the posterior covariance is not a covariance".into(),
-                    ));
-                }
-            }
+            let ellipse = PositionEllipse::from_ellipse(post.ellipse);
+            apply_if_gain(&mut event, c, state, r, post.mean_m, ellipse);
         }
     }
     event.uncertainty_after_m = state.uncertainty.radius_m(&c.model);
@@ -146,7 +140,7 @@ pub(crate) fn ekf_localization(
     if r > 0.0 {
         match localization::ekf::parked_fix(&loc.settings, [offset.x, offset.y], r / 3.0, seed) {
             Err(e) => event.reason = Some(RejectionReason::Filter(e.to_string())),
-            Ok(fix) => match PositionEllipse::from_covariance(&fix.covariance_m2) {
+            Ok(fix) => match fix.ellipse().map(PositionEllipse::from_ellipse) {
                 Some(ellipse) => {
                     let truth = state.truth.position_m;
                     let mean = [truth.x + fix.error_enu_m[0], truth.y + fix.error_enu_m[1]];

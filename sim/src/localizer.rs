@@ -89,6 +89,17 @@ impl OnboardLocalizer {
         }
     }
 
+    /// The imaging, matcher and co-processor settings of a localizer that renders post-drive
+    /// imagery and runs on the co-processor (census, NCC, MI, particle); `None` otherwise.
+    #[must_use]
+    pub fn imagery_settings(&self) -> Option<&OnboardSettings> {
+        match self {
+            OnboardLocalizer::Imagery(i) => Some(&i.settings),
+            OnboardLocalizer::Particle(p) => Some(&p.settings),
+            OnboardLocalizer::Statistical(_) | OnboardLocalizer::Ekf(_) => None,
+        }
+    }
+
     /// The co-processor settings the chain runs (and is planned) with: the link rate, the
     /// reboot, the run time of the statistical model.
     #[must_use]
@@ -103,12 +114,13 @@ impl OnboardLocalizer {
 
     /// Set the HBS link rate, bytes per second (the scenario's `hbs_link_rate_kb_per_s`).
     pub fn set_link_bytes_per_s(&mut self, link_bytes_per_s: f64) {
-        match self {
-            OnboardLocalizer::Statistical(s) => s.hbs.link_bytes_per_s = link_bytes_per_s,
-            OnboardLocalizer::Imagery(i) => i.settings.hbs.link_bytes_per_s = link_bytes_per_s,
-            OnboardLocalizer::Particle(p) => p.settings.hbs.link_bytes_per_s = link_bytes_per_s,
-            OnboardLocalizer::Ekf(e) => e.hbs.link_bytes_per_s = link_bytes_per_s,
-        }
+        let hbs = match self {
+            OnboardLocalizer::Statistical(s) => &mut s.hbs,
+            OnboardLocalizer::Imagery(i) => &mut i.settings.hbs,
+            OnboardLocalizer::Particle(p) => &mut p.settings.hbs,
+            OnboardLocalizer::Ekf(e) => &mut e.hbs,
+        };
+        hbs.link_bytes_per_s = link_bytes_per_s;
     }
 }
 

@@ -287,14 +287,19 @@ impl PositionEllipse {
     /// a covariance.
     #[must_use]
     pub fn from_covariance(cov_m2: &[[f64; 2]; 2]) -> Option<Self> {
-        let e = localization::particle::Ellipse::try_from_covariance(cov_m2)?;
-        Some(Self {
+        localization::particle::Ellipse::try_from_covariance(cov_m2).map(Self::from_ellipse)
+    }
+
+    /// The record of a 1σ ellipse.
+    #[must_use]
+    pub fn from_ellipse(e: localization::particle::Ellipse) -> Self {
+        Self {
             semi_major_m: e.semi_major_m,
             semi_minor_m: e.semi_minor_m,
             azimuth_deg: e.azimuth_deg,
             mmgis_angle_deg: e.mmgis_angle_deg(),
-            disc_radius_m: 3.0 * e.semi_major_m,
-        })
+            disc_radius_m: e.disc_radius_m(),
+        }
     }
 }
 

@@ -81,17 +81,14 @@ pub fn incline_slide(
     friction: f64,
     duration_s: f64,
 ) -> Result<InclineSlide, PhysicsError> {
-    check_experiment(slope_deg, friction, duration_s)?;
-    let slope = Slope::new(slope_deg, friction);
-    let mut world = slope.world();
-    let start = slope.normal() * (SLAB_HALF_THICKNESS_M + 0.25);
-    let (block, _) = world.insert(
-        RigidBodyBuilder::dynamic()
-            .translation(start)
-            .rotation(slope.tilt.to_scaled_axis()),
-        slope.material(ColliderBuilder::cuboid(0.25, 0.25, 0.25)),
-    );
-    let (slid_m, t) = slope.run(&mut world, block, start, duration_s);
+    let (slid_m, t) = slide_down(
+        slope_deg,
+        friction,
+        duration_s,
+        0.25,
+        Rotation::IDENTITY,
+        ColliderBuilder::cuboid(0.25, 0.25, 0.25),
+    )?;
     let (g, theta) = (MARS_SURFACE_GRAVITY_M_PER_S2, slope_deg.to_radians());
     let a = g * (theta.sin() - friction * theta.cos());
     Ok(InclineSlide {
@@ -114,20 +111,16 @@ pub fn rolling_wheel(
     friction: f64,
     duration_s: f64,
 ) -> Result<InclineSlide, PhysicsError> {
-    check_experiment(slope_deg, friction, duration_s)?;
-    let slope = Slope::new(slope_deg, friction);
-    let mut world = slope.world();
     let radius_m = 0.25;
-    let start = slope.normal() * (SLAB_HALF_THICKNESS_M + radius_m);
     // Rapier's cylinder runs along y: turn it to z, across the slope.
-    let axis_across = slope.tilt * Rotation::from_rotation_x(std::f64::consts::FRAC_PI_2);
-    let (wheel, _) = world.insert(
-        RigidBodyBuilder::dynamic()
-            .translation(start)
-            .rotation(axis_across.to_scaled_axis()),
-        slope.material(ColliderBuilder::cylinder(0.1, radius_m)),
-    );
-    let (slid_m, t) = slope.run(&mut world, wheel, start, duration_s);
+    let (slid_m, t) = slide_down(
+        slope_deg,
+        friction,
+        duration_s,
+        radius_m,
+        Rotation::from_rotation_x(std::f64::consts::FRAC_PI_2),
+        ColliderBuilder::cylinder(0.1, radius_m),
+    )?;
     let (g, theta) = (MARS_SURFACE_GRAVITY_M_PER_S2, slope_deg.to_radians());
     let a = if friction >= theta.tan() / 3.0 {
         2.0 / 3.0 * g * theta.sin()
@@ -138,6 +131,30 @@ pub fn rolling_wheel(
         slid_m,
         analytic_m: 0.5 * a * t * t,
     })
+}
+
+/// Release `collider` at rest on the slab of `slope_deg` and `friction`, its centre
+/// `half_height_m` above the surface and turned by `turn` in the slab's frame, and step it for
+/// `duration_s`: the distance it moved downhill, metres, and the time simulated, seconds.
+fn slide_down(
+    slope_deg: f64,
+    friction: f64,
+    duration_s: f64,
+    half_height_m: f64,
+    turn: Rotation,
+    collider: ColliderBuilder,
+) -> Result<(f64, f64), PhysicsError> {
+    check_experiment(slope_deg, friction, duration_s)?;
+    let slope = Slope::new(slope_deg, friction);
+    let mut world = slope.world();
+    let start = slope.normal() * (SLAB_HALF_THICKNESS_M + half_height_m);
+    let (body, _) = world.insert(
+        RigidBodyBuilder::dynamic()
+            .translation(start)
+            .rotation((slope.tilt * turn).to_scaled_axis()),
+        slope.material(collider),
+    );
+    Ok(slope.run(&mut world, body, start, duration_s))
 }
 
 /// Half the thickness of the slab the experiments run on, metres.

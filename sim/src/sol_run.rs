@@ -39,15 +39,11 @@ use localization::hbs::HbsStep;
 /// at 40 KB/s).
 pub(crate) fn chain_durations(localizer: &OnboardLocalizer) -> ChainDurations {
     let hbs = localizer.hbs();
-    let run_s = match localizer {
-        OnboardLocalizer::Imagery(i) => {
-            i.settings.hbs_slowdown * localization::onboard::MEASURED_FLIGHT_SIZE_RUN_S
-        }
-        // The particle filter's cost is the census score surface over the same window.
-        OnboardLocalizer::Particle(p) => {
-            p.settings.hbs_slowdown * localization::onboard::MEASURED_FLIGHT_SIZE_RUN_S
-        }
-        OnboardLocalizer::Statistical(_) | OnboardLocalizer::Ekf(_) => hbs.run_s,
+    // The particle filter runs on the co-processor like the matchers: its cost is the census
+    // score surface over the same window.
+    let run_s = match localizer.imagery_settings() {
+        Some(s) => s.hbs_slowdown * localization::onboard::MEASURED_FLIGHT_SIZE_RUN_S,
+        None => hbs.run_s,
     };
     ChainDurations {
         transfer_s: (localization::onboard::FLIGHT_SIZE_LINK_BYTES as f64 / hbs.link_bytes_per_s)

@@ -179,3 +179,16 @@ pub fn sweep_rapid_traverse(runs: u32, out: &std::path::Path) {
         &[out],
     );
 }
+
+/// `solsim report DIR --out OUT EXTRA…` from the repository root.
+pub fn report(dir: &std::path::Path, out: &std::path::Path, extra: &[&str]) -> Output {
+    solsim()
+        .current_dir(root())
+        .arg("report")
+        .arg(dir)
+        .arg("--out")
+        .arg(out)
+        .args(extra)
+        .output()
+        .expect("runs")
+}

@@ -33,6 +33,7 @@ use super::state::{STATE_DIM, ix};
 use super::table1::{Simulation, Table1Case, simulate};
 use super::trajectory::TrajectorySettings;
 use super::tuning::FilterModel;
+use crate::particle::Ellipse;
 
 /// Settings of a parked-rover EKF localization (plain struct; defaults on each field).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -75,6 +76,15 @@ pub struct ParkedFix {
     pub ranges_used: u32,
     /// Updates skipped because `H P Hᵀ + R` was not positive definite.
     pub rejected_updates: u32,
+}
+
+impl ParkedFix {
+    /// The 1σ ellipse of the final position covariance (`None` if it is not a covariance);
+    /// its [`Ellipse::disc_radius_m`] is the disc the simulator grows keep-outs by.
+    #[must_use]
+    pub fn ellipse(&self) -> Option<Ellipse> {
+        Ellipse::try_from_covariance(&self.covariance_m2)
+    }
 }
 
 impl ParkedSettings {

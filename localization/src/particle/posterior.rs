@@ -84,6 +84,13 @@ impl Ellipse {
     pub fn mmgis_angle_deg(&self) -> f64 {
         (self.azimuth_deg - 90.0).rem_euclid(180.0)
     }
+
+    /// The conservative disc of this 1σ ellipse: 3 × the semi-major axis, the circle around
+    /// the whole 3σ ellipse (what the simulator's keep-out zones grow by after a filter fix).
+    #[must_use]
+    pub fn disc_radius_m(&self) -> f64 {
+        3.0 * self.semi_major_m
+    }
 }
 
 /// One cluster of the belief (see [`super::ParticleFilter::modes`]).
