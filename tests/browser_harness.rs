@@ -2,7 +2,7 @@
 //! directory: it passes a clean page with an inline SVG and reports what a report test must catch
 //! (console errors, uncaught exceptions, failed local and network loads, a blank page).
 
-mod common;
+use crate::common;
 
 use common::browser::{PageCheck, check_page};
 

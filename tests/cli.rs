@@ -2,7 +2,7 @@
 //! on one thread and on two), `regress` exit codes and JUnit output, and bad input — every bad
 //! file gets exactly one clear line naming the file and the field, and exit code 2, never a panic.
 
-mod common;
+use crate::common;
 
 use common::{assert_bad_input, root, solsim, stderr};
 use std::path::{Path, PathBuf};

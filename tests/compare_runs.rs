@@ -6,7 +6,7 @@
 //! The rapid traverse: 8 runs of its five strategies take about 1 s (release, 2 cores), where
 //! sols 383-386 take about 11 s.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 use std::process::Output;

@@ -2,7 +2,7 @@
 //! the shell accepts, naming every command; `solsim man` prints the manual page and `--out`
 //! writes one page per command, each of which groff formats without a warning.
 
-mod common;
+use crate::common;
 
 use common::{solsim, stderr};
 

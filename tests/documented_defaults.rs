@@ -4,7 +4,7 @@
 use localization::onboard::{
     FLIGHT_NAVCAM_IMAGES_BYTES, FLIGHT_SIZE_MAP_BYTES, MEASURED_FLIGHT_SIZE_RUN_S, OnboardSettings,
 };
-use sim::autonav::RoverParams;
+use sim::autonav::{ProfileSlip, RoverParams};
 use sim::localizer::{OnboardLocalizer, StatisticalLocalizer};
 use sim::planning_grid::GridParams;
 use sim::uncertainty::UncertaintyModel;
@@ -14,6 +14,7 @@ fn readme_defaults_match_the_code() {
     let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md"))
         .expect("README.md");
     let rover = RoverParams::default();
+    let slip = ProfileSlip::default();
     let grid = GridParams::default();
     let model = UncertaintyModel::default();
     let loc = StatisticalLocalizer::default();
@@ -32,6 +33,9 @@ fn readme_defaults_match_the_code() {
             rover.drive_rate_m_per_h,
         ),
         ("`step_m` (default 2)", 2.0, rover.step_m),
+        ("`slip_limit` (default 0.5", 0.5, slip.slip_limit),
+        ("`max_tilt_deg` (default 25)", 25.0, slip.max_tilt_deg),
+        ("0.25 with the defaults", 0.25, slip.avoid_slip_above),
         (
             "`waypoint_tolerance_m` (default 2)",
             2.0,

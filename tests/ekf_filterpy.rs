@@ -11,7 +11,7 @@
 //! filterpy runs from `peers/.venv`; without it the check is skipped with a message on stderr,
 //! unless `CI` is set (`.ci/run` creates the venv), then it fails.
 
-mod common;
+use crate::common;
 
 use std::time::Duration;
 

@@ -1,7 +1,7 @@
 //! The `[errors]` section and the statistical `errors = "…"` / `disc_coverage` checks: bad values
 //! are one line naming the field; `solsim calibrate vo` explains a scenario it cannot use.
 
-mod common;
+use crate::common;
 
 use common::{assert_bad_input, root, solsim};
 

@@ -7,7 +7,7 @@
 //! `xml.etree.ElementTree` parses it), shows what it claims from the run's own JSON, and is
 //! the same byte for byte on a second run.
 
-mod common;
+use crate::common;
 
 use common::{root, solsim, stderr};
 

@@ -3,7 +3,7 @@
 //! run through `compare` byte-identically on one and two threads; the filter's ellipse reaches
 //! the sol log, the CSV and the GeoJSON; bad settings are refused naming the field.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

@@ -6,7 +6,7 @@
 //! the transfer; every sol plan still validates. A link rate that is not a serial link's is
 //! refused with one line naming the file and the field.
 
-mod common;
+use crate::common;
 
 use common::{assert_bad_input, scenario_copy, solsim};
 use sim::Strategy;

@@ -4,7 +4,7 @@
 //! every coordinate a bound (±11 000 km of map metres: off Mars beyond it): exit 2, one line
 //! naming the field and what is allowed, the number printed readably.
 
-mod common;
+use crate::common;
 
 use common::{assert_bad_input, root, scenario_copy, solsim};
 

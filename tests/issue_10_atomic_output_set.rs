@@ -5,7 +5,7 @@
 //! run removes what the killed one left beside it.
 #![cfg(unix)]
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 use std::time::Instant;

@@ -3,7 +3,7 @@
 //! said `map:` without the key, and printed 300-digit numbers. Now every excerpt is capped, each
 //! clause appears once, the layer is named and numbers read as `1e300`.
 
-mod common;
+use crate::common;
 
 use common::{assert_bad_input, scenario_copy, solsim, stderr};
 

@@ -5,7 +5,7 @@
 //! (the worst overlapping case at the limit loads in about a second): over it, exit 2 with one
 //! line naming the file, while the limit itself still loads.
 
-mod common;
+use crate::common;
 
 use std::time::Duration;
 

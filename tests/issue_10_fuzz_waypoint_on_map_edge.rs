@@ -6,7 +6,7 @@
 //! 0.000…01]`), the variant that "is a bug in the loader if it ever shows". The loader now
 //! checks the route against the grid it built: the error names `route.waypoints[0]`.
 
-mod common;
+use crate::common;
 
 use study::{Scenario, ScenarioError};
 

@@ -6,7 +6,7 @@
 //! `--memory-budget-mib`) is now checked from the fields and the raster headers before
 //! allocating: exit 2, one line naming the field and the size it would need.
 
-mod common;
+use crate::common;
 
 use std::time::Duration;
 

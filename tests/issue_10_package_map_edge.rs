@@ -13,7 +13,7 @@
 //! Now the package comes out with tiles covering the part of the corridor that is on the map,
 //! and it is the same whatever the render block size, at every edge.
 
-mod common;
+use crate::common;
 
 use common::{manifest, package, root, stderr};
 use std::path::{Path, PathBuf};

@@ -5,7 +5,7 @@
 //! with exit 2 and one `error:` line naming the file.
 #![cfg(unix)]
 
-mod common;
+use crate::common;
 
 use std::time::Duration;
 

@@ -17,7 +17,7 @@
 //! them (apt-get update and install: 11-15 s).
 #![cfg(target_os = "linux")]
 
-mod common;
+use crate::common;
 
 use std::os::unix::fs::MetadataExt;
 use std::path::{Path, PathBuf};

@@ -2,7 +2,7 @@
 //! min late on the LMST axis (a Mars hour is 3698.96 s); and maps were not at equal scale
 //! (1.01-1.12 px/m north against east) because the plot size was assumed, not measured.
 
-mod common;
+use crate::common;
 
 use common::run_ok;
 

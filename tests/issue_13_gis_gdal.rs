@@ -27,7 +27,7 @@
 //! Without gdal-bin the test prints `SKIPPED: gdal-bin not installed` and passes, except under
 //! `CI`, where it fails (`.ci/run` installs gdal-bin).
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;

@@ -1,7 +1,7 @@
 //! Issue 13: `validate`, `regress`, `seu-campaign` and `map package` printed only text. Each
 //! now takes `--json` (validate's is tested in `issue_13_validate_nonsense.rs`).
 
-mod common;
+use crate::common;
 
 use common::{rebase, root, solsim, stderr};
 use serde_json::Value;

@@ -3,7 +3,7 @@
 //! run split their scenario's load and runs, statistical entries split the sweep they share.
 //! The cases sum to no more than the command took, and the suite's time is their sum.
 
-mod common;
+use crate::common;
 
 use common::{rebase, root, solsim, stderr};
 

@@ -3,7 +3,7 @@
 //! `WrongDuration { step: 3, … }` and `(Battery)`, scenario errors `at_most Some(-1.0)`. Each
 //! now prints words.
 
-mod common;
+use crate::common;
 
 use common::{root, solsim, stderr, validate_edited_sol717};
 

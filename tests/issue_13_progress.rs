@@ -3,7 +3,7 @@
 //! error when it is a terminal (checked under a pseudo-terminal, `script` from util-linux),
 //! like `sweep` and `compare --runs`, and print nothing there when it is piped.
 
-mod common;
+use crate::common;
 
 use std::process::Command;
 

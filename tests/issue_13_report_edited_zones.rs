@@ -2,7 +2,7 @@
 //! used — the provenance hashed only the scenario TOML. Runs now record the SHA-256 of the map
 //! rasters and the zones file (`provenance.inputs_sha256`) and `report` names the edited one.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

@@ -2,7 +2,7 @@
 //! report.html — the run's files were replaced with the output set. `--out` must now be a
 //! directory of its own: not the reported one, nor one holding other files.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

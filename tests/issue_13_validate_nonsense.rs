@@ -5,7 +5,7 @@
 //! listed by `validate`, refused by every other command with one line) or a warning where an
 //! operator may mean it.
 
-mod common;
+use crate::common;
 
 use std::path::PathBuf;
 use std::process::Output;

@@ -4,7 +4,7 @@
 //! `tests/sweep_resume.rs` kills at random moments and hit that window only under load; this
 //! test makes the state directly.
 
-mod common;
+use crate::common;
 
 use common::{root, solsim};
 

@@ -7,7 +7,7 @@
 //! the map, a search window leaving it, NaN and out-of-range flags — gets exit code 2 and one
 //! `error:` line naming the file or flag, never a panic. The README's example is run as printed.
 
-mod common;
+use crate::common;
 
 use common::{assert_bad_input, root, solsim, stderr};
 use std::path::PathBuf;

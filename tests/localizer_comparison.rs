@@ -3,7 +3,7 @@
 //! the same on one and two threads (times aside), and the Markdown form is the one
 //! BENCHMARKS.md holds.
 
-mod common;
+use crate::common;
 
 use common::{root, solsim};
 

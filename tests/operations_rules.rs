@@ -2,7 +2,7 @@
 //! optional extension cap) and the statistical `paired = { at_most, share }` check: bad values
 //! are one line naming the field; good ones load and act.
 
-mod common;
+use crate::common;
 
 use common::assert_bad_input;
 

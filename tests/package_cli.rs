@@ -3,7 +3,7 @@
 //! bytes on disk, pixels outside the corridor are masked, the DEM round-trips to the centimetre,
 //! blocks join without seams, and bad input is one `error:` line with exit code 2.
 
-mod common;
+use crate::common;
 
 use common::{manifest, package, root, solsim, stderr};
 use std::path::{Path, PathBuf};

@@ -6,7 +6,7 @@
 //! byte-identical. Bad campaign files get exit 2 and exactly one `error:` line naming the file
 //! and the field. No timing assertions.
 
-mod common;
+use crate::common;
 
 use common::solsim;
 use std::path::{Path, PathBuf};

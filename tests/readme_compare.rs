@@ -2,7 +2,7 @@
 //! with each strategy set against `ground` under the table — is what the command prints; so is
 //! its block of `solsim compare --runs 200`, except the parts it marks `…` as left out.
 
-mod common;
+use crate::common;
 
 use common::{root, solsim, stderr};
 

@@ -5,7 +5,7 @@
 //! and no uncaught exception; the screenshot is not blank and shows the figures' strategy
 //! colours (so the inline SVG was drawn, not only present); every figure is in the DOM.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

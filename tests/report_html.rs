@@ -4,7 +4,7 @@
 //! a directory whose files the scenario no longer gives is refused. (The page in a real
 //! browser: tests/report_browser.rs.)
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

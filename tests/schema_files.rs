@@ -6,7 +6,7 @@
 //! The validator runs from `peers/.venv`; without it the check is skipped with a message on
 //! stderr, unless `CI` is set (`.ci/run` creates the venv), then it fails.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

@@ -3,7 +3,7 @@
 //! was refused — and a complete sweep directory is refused without `--resume` and left as it is
 //! with it. Every sweep here is tiny (rapid traverse, at most 4 runs of one strategy).
 
-mod common;
+use crate::common;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

@@ -1,7 +1,7 @@
 //! A sweep's files depend only on the scenario, the seed, the runs and the strategies: not on
 //! the thread count, the chunk size, or how the run indices were cut into shards and merged.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

@@ -12,7 +12,7 @@
 //! on stderr — unless the environment variable `CI` is set, then it fails (CI creates the venv
 //! first). The last checks the checker: it must report a schema or a summary that differs.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::Output;

@@ -1,7 +1,7 @@
 //! A sweep killed (SIGKILL) at random moments and resumed with `--resume` finishes with no run
 //! lost or duplicated and files byte-identical to an uninterrupted sweep.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 use std::process::{Command, Stdio};

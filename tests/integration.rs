@@ -1,0 +1,63 @@
+//! Every integration test of the `solsim` package, in one test binary.
+//!
+//! Each file in `tests/` is a module here (`tests/issue_<N>_<symptom>.rs` stays its own file);
+//! one binary instead of one per file keeps a clean `cargo test` to a fraction of the disk and
+//! link time (52 binaries of ~50 MB each filled a CI disk). Run one file's tests with
+//! `cargo test --test integration <file name>::`, e.g. `cargo test --test integration cli::`.
+//!
+//! Three files stay binaries of their own (`[[test]]` entries in Cargo.toml), because they
+//! measure the whole process: `fuzz_parsers` and `issue_10_fuzz_tiff_tag_allocation` install a
+//! global allocator that counts every allocation, and `issue_10_fuzz_toml_memory` reads the
+//! peak memory of every child the process has run.
+
+mod common;
+
+mod browser_harness;
+mod calibration_drive_rate;
+mod calibration_vo;
+mod cli;
+mod compare_runs;
+mod completions_man;
+mod documented_defaults;
+mod ekf_filterpy;
+mod errors_section;
+mod figures;
+mod filter_localizers;
+mod hbs_chain;
+mod issue_10_absurd_values;
+mod issue_10_atomic_output_set;
+mod issue_10_error_lines;
+mod issue_10_fuzz_campaign_tolerance_overflow;
+mod issue_10_fuzz_keep_in_union_time;
+mod issue_10_fuzz_sol_overflow;
+mod issue_10_fuzz_waypoint_on_map_edge;
+mod issue_10_memory_budget;
+mod issue_10_package_map_edge;
+mod issue_10_special_files;
+mod issue_11_slurm;
+mod issue_12_drive_duration_rounding;
+mod issue_13_gantt_lmst_axis;
+mod issue_13_gis_gdal;
+mod issue_13_json_outputs;
+mod issue_13_junit_times;
+mod issue_13_no_debug_text;
+mod issue_13_progress;
+mod issue_13_report_edited_zones;
+mod issue_13_report_out_keeps_run;
+mod issue_13_validate_nonsense;
+mod issue_14_sweep_half_written_manifest;
+mod localize_cli;
+mod localizer_comparison;
+mod operations_rules;
+mod package_cli;
+mod plan_cli;
+mod readme_compare;
+mod report_browser;
+mod report_html;
+mod scenario_expectations;
+mod schema_files;
+mod sol_plans;
+mod sweep_cli;
+mod sweep_determinism;
+mod sweep_parquet_pyarrow;
+mod sweep_resume;
