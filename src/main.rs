@@ -104,6 +104,18 @@ enum Command {
     /// panoramas over rocky, plain and dune terrain): mean, median, p99, max, counts over 1 m and
     /// 2 m, for census, NCC and mutual information.
     LocalizeBench(cmd_localize::LocalizeBenchArgs),
+    /// Slip against slope, per terrain class (sand, soil, bedrock) and heading (up-, cross- and
+    /// down-slope), measured by the six-wheel rover in rapier on terramechanics soils.
+    ///
+    /// Each run drives the rover on a plane slope (a heightfield collider) for --duration-s at
+    /// 5 cm/s and measures slip = 1 − progress / commanded over the second half, the chassis
+    /// tilt and the sideways drift; the wheels' traction comes from the Janosi–Hanamoto shear
+    /// law and their rolling resistance from Bekker's sinkage (sim::physics::soil cites the
+    /// soil values). Writes slip_profile.csv (with the closed-form steady slip of the same
+    /// soil model beside each up and down run), slip_profile.svg and slip_profile.json to
+    /// --out. The simulator reads the bundled table sim/data/slip_profile.csv, which is this
+    /// command's output at the defaults.
+    SlipProfile(solsim::cmd_slip_profile::SlipProfileArgs),
     /// Inject radiation upsets (bit flips in storage, memory and results; stalls) into seeded
     /// onboard-localization runs on the co-processor model and count injected / caught / lost /
     /// corrupted-and-applied (which must be zero).
@@ -137,6 +149,17 @@ enum Command {
     /// continues after a kill; --shard K/N, `sweep merge` and `sweep slurm` spread a sweep over
     /// machines.
     Sweep(Box<solsim::cmd_sweep::SweepArgs>),
+    /// One strategy on two versions of a scenario that differ in a setting, over the same run
+    /// indices: the variant against the base, paired run by run.
+    ///
+    /// Both files must carry the same seed: run i of both then sees the same world (the same
+    /// heading errors, VO failures, slip draws), so a difference is the setting's, not luck's.
+    /// Prints, for each figure of `solsim sweep` (drive time, sols to goal, faults, ...), the
+    /// base's and the variant's mean over the runs where both have it and their difference
+    /// with a 95 % bootstrap interval; then the fault and goal rates of each with 95 % Wilson
+    /// intervals. Example: scenarios/dune-crossing.toml against
+    /// scenarios/dune-crossing-slip-unaware.toml asks what slip-aware routing buys.
+    Whatif(solsim::cmd_whatif::WhatifArgs),
     /// Re-derive a calibrated constant of the error model from a scenario's historic record
     /// (the command each calibrated default names).
     #[command(subcommand)]
@@ -404,6 +427,14 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
         }
         Command::Calibrate(c) => {
             solsim::cmd_calibrate::run(&c, budget, stdout)?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Whatif(a) => {
+            solsim::cmd_whatif::run(&a, budget, stdout)?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::SlipProfile(a) => {
+            solsim::cmd_slip_profile::run(&a, stdout)?;
             Ok(ExitCode::SUCCESS)
         }
         Command::LocalizeBench(a) => {

@@ -56,6 +56,8 @@ mod report_browser;
 mod report_html;
 mod scenario_expectations;
 mod schema_files;
+mod slip_aware_routing;
+mod slip_profile;
 mod sol_plans;
 mod sweep_cli;
 mod sweep_determinism;

@@ -208,9 +208,26 @@ impl Raster<f32> {
     /// The raster holds heights in metres; the result holds degrees.
     #[must_use]
     pub fn slope_deg(&self) -> Raster<f32> {
+        let g = self.gradient();
+        Raster {
+            width: g.width,
+            height: g.height,
+            geo: g.geo,
+            data: g
+                .data
+                .iter()
+                .map(|[dzdx, dzdy]| dzdx.hypot(*dzdy).atan().to_degrees())
+                .collect(),
+        }
+    }
+
+    /// The height gradient at every pixel, `[∂z/∂x (east), ∂z/∂y (north)]`, metres per metre,
+    /// from central differences (one-sided at edges; zero on a raster under 2 × 2 pixels).
+    #[must_use]
+    pub fn gradient(&self) -> Raster<[f32; 2]> {
         let (w, h) = (self.width, self.height);
         let res = self.geo.resolution_m_per_px as f32;
-        let mut out = Raster::filled(w, h, self.geo, 0.0f32);
+        let mut out = Raster::filled(w, h, self.geo, [0.0f32; 2]);
         if w < 2 || h < 2 {
             return out;
         }
@@ -220,7 +237,7 @@ impl Raster<f32> {
                 let (ca, cb) = (c.saturating_sub(1), (c + 1).min(w - 1));
                 let dzdx = (self.get(cb, r) - self.get(ca, r)) / ((cb - ca) as f32 * res);
                 let dzdy = (self.get(c, ra) - self.get(c, rb)) / ((rb - ra) as f32 * res);
-                out.data[r * w + c] = (dzdx.hypot(dzdy)).atan().to_degrees();
+                out.data[r * w + c] = [dzdx, dzdy];
             }
         }
         out

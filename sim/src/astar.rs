@@ -173,6 +173,27 @@ impl AStar {
         min_cost: f32,
         cell_cost: F,
     ) -> Option<GridPath> {
+        self.plan_edges(start, goal, min_cost, |_, to| cell_cost(to))
+    }
+
+    /// [`AStar::plan`] with a cost that depends on the move: `move_cost(from, to)` is the cost
+    /// multiplier of moving from cell `from` to its neighbour `to` (the direction of travel
+    /// matters: uphill on sand is not downhill on sand), `f32::INFINITY` if that move is
+    /// blocked. `move_cost(i, i)` says whether cell `i` can be occupied at all: it decides the
+    /// start and goal, and the early unreachability check counts a cell passable when it is
+    /// finite. A diagonal move is allowed when both orthogonal moves from `from` beside it are.
+    /// The heuristic stays admissible when no finite move costs less than `min_cost`.
+    ///
+    /// # Panics
+    /// If `start` or `goal` is outside the grid.
+    pub fn plan_edges<F: Fn(usize, usize) -> f32>(
+        &mut self,
+        start: usize,
+        goal: usize,
+        min_cost: f32,
+        move_cost: F,
+    ) -> Option<GridPath> {
+        let cell_cost = |i: usize| move_cost(i, i);
         let n = self.cells.len();
         assert!(
             start < n && goal < n,
@@ -259,7 +280,7 @@ impl AStar {
                 if search.is_closed(r, c) {
                     return true;
                 }
-                let cost = f64::from(cell_cost(r * width + c));
+                let cost = f64::from(move_cost(cur, r * width + c));
                 // `x < ∞` is false for ∞ and NaN alike: both are blocked.
                 let open = cost < f64::INFINITY;
                 if open {
@@ -280,7 +301,7 @@ impl AStar {
                 (pd && pr, row + 1, col + 1),
             ] {
                 if ok && !search.is_closed(r, c) {
-                    let cost = f64::from(cell_cost(r * width + c));
+                    let cost = f64::from(move_cost(cur, r * width + c));
                     if cost < f64::INFINITY {
                         search.relax_unclosed(cell, g, r, c, sqrt2 * cost);
                     }
@@ -512,6 +533,44 @@ mod tests {
     use std::cmp::Ordering;
     use std::cmp::Reverse;
     use std::collections::BinaryHeap;
+
+    /// A wall of column 5 that is cheap to cross westward and blocked eastward (sand uphill one
+    /// way, downhill the other): going east the path detours around its end, going west it
+    /// goes straight through; with the cell-cost closure the same wall is symmetric.
+    #[test]
+    fn move_costs_depend_on_the_direction() {
+        let (w, h) = (11, 7);
+        let wall = |i: usize| i % w == 5 && i / w < 6;
+        let cost = |from: usize, to: usize| {
+            if from != to && wall(to) && to % w > from % w {
+                f32::INFINITY
+            } else {
+                1.0
+            }
+        };
+        let mut a = AStar::new(w, h);
+        let east = a
+            .plan_edges(3 * w + 1, 3 * w + 9, 1.0, cost)
+            .expect("a path east");
+        assert!(
+            east.cells.iter().any(|&c| c / w == 6),
+            "detours below the wall: {east:?}"
+        );
+        let west = a
+            .plan_edges(3 * w + 9, 3 * w + 1, 1.0, cost)
+            .expect("a path west");
+        assert_eq!(west.cells.len(), 9, "straight through: {west:?}");
+        assert!((west.cost - 8.0).abs() < 1e-9);
+        // The start and goal must be occupiable: `cost(i, i)` decides.
+        assert!(
+            a.plan_edges(0, 10, 1.0, |f, t| if f == t && t == 10 {
+                f32::INFINITY
+            } else {
+                1.0
+            })
+            .is_none()
+        );
+    }
 
     /// Plain Dijkstra over the same move model, returning the optimal cost.
     fn dijkstra(

@@ -23,6 +23,7 @@ use crate::errors::{ErrorModel, SolErrors};
 use crate::outcome::{Fault, FaultKind};
 use crate::planning_grid::PlanningGrid;
 use crate::pose::{EstimatedPose, TruePose};
+use crate::slip_profile::SlipTable;
 use crate::uncertainty::{UncertaintyModel, UncertaintyState};
 use maps::TerrainClass;
 
@@ -94,7 +95,73 @@ pub struct RoverParams {
     /// What the estimate does not know: heading, VO scale and noise, VO failures, slip,
     /// ground localization (default: [`ErrorModel::calibrated`]).
     pub errors: ErrorModel,
+    /// Where slip comes from and whether AutoNav plans around it (default:
+    /// [`SlipModel::Terrain`]).
+    pub slip_model: SlipModel,
 }
+
+/// Where a step's slip comes from.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum SlipModel {
+    /// A mean per terrain class ([`ErrorModel::slip_fraction`]), whatever the slope; the path
+    /// cost per terrain class ([`RoverParams::terrain_cost`]). What every calibration used.
+    Terrain,
+    /// The slip profile of the rapier rover ([`crate::slip_profile`]): the mean slip of a step
+    /// by terrain class and the slope along and across its heading (the grid's DEM gradient),
+    /// spread as [`ErrorModel::slip_sigma_relative`] says. High slip makes VO fail more often
+    /// ([`VO_FAILURE_AT_FULL_SLIP`]); a step whose VO-measured slip exceeds `slip_limit`
+    /// stops the drive (`SLIP` fault), as the flight software's slip check does.
+    Profile(ProfileSlip),
+}
+
+/// Settings of [`SlipModel::Profile`] (plain struct).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct ProfileSlip {
+    /// Plan with slip (paper 003 §4): a move costs the drive time per metre of progress,
+    /// `1 / (1 − predicted slip)` (times the edge-buffer penalty), and a move whose predicted
+    /// slip exceeds `avoid_slip_above` or whose predicted tilt exceeds `max_tilt_deg` is a
+    /// hazard. `false`: the terrain-class costs of [`RoverParams::terrain_cost`], slope hazards
+    /// only.
+    pub aware_routing: bool,
+    /// Predicted slip slip-aware routing treats as a hazard, fraction (default
+    /// [`ProfileSlip::derived_avoid_slip_above`]: the prediction at which a step 2σ above it,
+    /// by [`ErrorModel::slip_sigma_relative`], reaches `slip_limit`; 0.25 for the defaults).
+    pub avoid_slip_above: f64,
+    /// Slip the drive tolerates, fraction (default 0.5): the onboard slip check stops the drive
+    /// when VO measures a step above it. An operator's setting.
+    pub slip_limit: f64,
+    /// Chassis tilt slip-aware routing avoids, degrees (default 25).
+    pub max_tilt_deg: f64,
+}
+
+impl Default for ProfileSlip {
+    fn default() -> Self {
+        Self {
+            aware_routing: true,
+            avoid_slip_above: Self::derived_avoid_slip_above(0.5, 0.5),
+            slip_limit: 0.5,
+            max_tilt_deg: 25.0,
+        }
+    }
+}
+
+impl ProfileSlip {
+    /// The predicted slip whose step 2σ above it reaches `slip_limit`, when a step's slip spreads
+    /// by `slip_sigma_relative` of its mean: `slip_limit / (1 + 2 σ)`. Below it the slip check
+    /// trips on about 2 % of steps or fewer.
+    #[must_use]
+    pub fn derived_avoid_slip_above(slip_limit: f64, slip_sigma_relative: f64) -> f64 {
+        slip_limit / (1.0 + 2.0 * slip_sigma_relative)
+    }
+}
+
+/// Probability that VO fails on a step at slip 1, added in proportion to slip above 0.2 (at
+/// slip `s`: `class rate + 0.5 × max(0, s − 0.2) / 0.8`). Judgement, not calibrated: a wheel
+/// churning sand sprays the near field VO tracks and drags the rover off the features it
+/// expected; below 20 % slip VO is taken to work as on level ground. Only
+/// [`SlipModel::Profile`] uses it.
+pub const VO_FAILURE_AT_FULL_SLIP: f64 = 0.5;
 
 impl Default for RoverParams {
     fn default() -> Self {
@@ -109,6 +176,7 @@ impl Default for RoverParams {
             },
             edge_buffer_m: 5.0,
             errors: ErrorModel::calibrated(),
+            slip_model: SlipModel::Terrain,
         }
     }
 }
@@ -345,18 +413,41 @@ pub fn drive_sol(
         let class = grid
             .cell_of(to_array(state.truth.position_m))
             .map_or(TerrainClass::Soil, |c| grid.terrain_class(c));
+        // The mean slip of the step: per class, or from the profile along the true heading.
+        let (mean_slip, slip_range) = match rover.slip_model {
+            SlipModel::Terrain => (errors.slip_fraction.get(class), (0.0, 0.9)),
+            SlipModel::Profile(_) => {
+                let (along, across) =
+                    slope_components(grid, state.truth.position_m, heading_err * cmd);
+                (
+                    f64::from(SlipTable::bundled().slip(class, along, across)),
+                    (-0.9, 0.95),
+                )
+            }
+        };
         let draw: f64 = rng.random();
         let (vo_ok, novo_fraction) = match vo {
             VoSource::Terrain => {
-                let ok = draw >= errors.vo_failure.get(class);
+                let p_fail = match rover.slip_model {
+                    SlipModel::Terrain => errors.vo_failure.get(class),
+                    SlipModel::Profile(_) => {
+                        errors.vo_failure.get(class)
+                            + VO_FAILURE_AT_FULL_SLIP * ((mean_slip - 0.2) / 0.8).clamp(0.0, 1.0)
+                    }
+                };
+                let ok = draw >= p_fail;
                 (ok, if ok { 0.0 } else { 1.0 })
             }
             VoSource::Historic { novo_fraction } => (draw >= novo_fraction, novo_fraction),
         };
         let slip_noise: f64 = rng.sample(StandardNormal);
-        let slip = (errors.slip_fraction.get(class)
-            * (1.0 + errors.slip_sigma_relative * slip_noise))
-            .clamp(0.0, 0.9);
+        // `mean × (1 + σ n)`; a braking (negative) mean spreads by its magnitude.
+        let slip = if mean_slip >= 0.0 {
+            mean_slip * (1.0 + errors.slip_sigma_relative * slip_noise)
+        } else {
+            mean_slip * (1.0 - errors.slip_sigma_relative * slip_noise)
+        }
+        .clamp(slip_range.0, slip_range.1);
         // The rover commands `cmd` in the frame it believes; the world turns it by the heading
         // knowledge error. VO measures the motion in the rover's frame (so it sees the slip,
         // not the heading error), scaled by the sol's scale error, plus noise; without VO the
@@ -380,6 +471,13 @@ pub fn drive_sol(
             cmd_len *= f;
             odo = distance_left;
         }
+        // The flight software's slip check: VO measured this step's progress against the
+        // command. Without VO the rover cannot see its slip.
+        let measured_slip = if vo_ok && cmd_len > 0.0 {
+            1.0 - d_est.dot(&cmd) / (cmd_len * cmd_len)
+        } else {
+            0.0
+        };
         state.truth.position_m += d_true;
         state.estimate.position_m += d_est;
         state.uncertainty.drive(odo, novo_fraction);
@@ -390,8 +488,35 @@ pub fn drive_sol(
         out.drive_time_s += cmd_len / rate_m_per_s;
         path.progress_m += odo;
         out.path_m.push(to_array(state.estimate.position_m));
+        if let SlipModel::Profile(p) = rover.slip_model
+            && measured_slip > p.slip_limit
+        {
+            out.fault = Some(Fault {
+                kind: FaultKind::Slip,
+                after_m: out.distance_m,
+                uncertainty_m: state.uncertainty.radius_m(ctx.model),
+                position_m: to_array(state.estimate.position_m),
+            });
+            break;
+        }
     }
     out
+}
+
+/// The slope's tangent along `heading` (positive uphill) and across it, at `at` on the grid's
+/// gradient layer; level where the grid has none or `at` is off it.
+fn slope_components(grid: &PlanningGrid, at: Vector2<f64>, heading: Vector2<f64>) -> (f32, f32) {
+    let g = grid
+        .cell_of(to_array(at))
+        .and_then(|i| grid.gradient.get(i))
+        .copied()
+        .unwrap_or([0.0; 2]);
+    let n = heading.norm();
+    if n <= 0.0 {
+        return (0.0, 0.0);
+    }
+    let (ux, uy) = ((heading.x / n) as f32, (heading.y / n) as f32);
+    (g[0] * ux + g[1] * uy, (g[0] * uy - g[1] * ux).abs())
 }
 
 /// Plan from cell `here` to route waypoint `waypoint` at uncertainty `r_m`.
@@ -406,14 +531,47 @@ fn plan_path(
     let grid = ctx.grid;
     let goal = grid.cell_of(ctx.route[waypoint])?;
     let buffer = ctx.rover.edge_buffer_m.max(1e-9);
-    let found = astar.plan(here, goal, 1.0, |i| {
-        if i != here && grid.closed(i, r_m) {
-            return f32::INFINITY;
-        }
+    let edge_factor = |i: usize| {
         let margin = f64::from(grid.clearance_m[i]) - r_m;
-        let edge_penalty = (1.0 - margin / buffer).clamp(0.0, 1.0);
-        (ctx.rover.terrain_cost.get(grid.terrain_class(i)) * (1.0 + edge_penalty)) as f32
-    })?;
+        1.0 + (1.0 - margin / buffer).clamp(0.0, 1.0)
+    };
+    let found = match ctx.rover.slip_model {
+        SlipModel::Profile(p) if p.aware_routing && !grid.gradient.is_empty() => {
+            let table = SlipTable::bundled();
+            let width = grid.width;
+            let (limit, max_tilt) = (p.avoid_slip_above as f32, p.max_tilt_deg as f32);
+            astar.plan_edges(here, goal, 1.0, |from, to| {
+                if to != here && grid.closed(to, r_m) {
+                    return f32::INFINITY;
+                }
+                if from == to {
+                    return 1.0;
+                }
+                // The move's direction on the map (x east, y north; rows run south).
+                let (dr, dc) = (
+                    (to / width) as f32 - (from / width) as f32,
+                    (to % width) as f32 - (from % width) as f32,
+                );
+                let len = dr.hypot(dc);
+                let (ux, uy) = (dc / len, -dr / len);
+                let g = grid.gradient[to];
+                let (along, across) = (g[0] * ux + g[1] * uy, (g[0] * uy - g[1] * ux).abs());
+                let class = grid.terrain_class(to);
+                let slip = table.slip(class, along, across);
+                if slip > limit || table.tilt_deg(class, along, across) > max_tilt {
+                    return f32::INFINITY;
+                }
+                // Drive time per metre of progress.
+                (f64::from(1.0 / (1.0 - slip.max(0.0))) * edge_factor(to)) as f32
+            })?
+        }
+        _ => astar.plan(here, goal, 1.0, |i| {
+            if i != here && grid.closed(i, r_m) {
+                return f32::INFINITY;
+            }
+            (ctx.rover.terrain_cost.get(grid.terrain_class(i)) * edge_factor(i)) as f32
+        })?,
+    };
     let mut points: Vec<Vector2<f64>> = found
         .cells
         .iter()

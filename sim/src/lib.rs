@@ -24,6 +24,8 @@
 //!   state-based) and the candidates they offer each sol.
 //! - [`campaign`]: the multi-sol runner; [`outcome`]: what it reports; [`campaign_error`]:
 //!   [`Campaign::validate`] for campaigns built in code.
+//! - [`physics`]: the rover in rapier on terramechanics soils; [`slip_profile`]: the
+//!   slip-versus-slope tables it measures, which the traverse reads.
 //! - [`seeds`]: the one derivation of every random stream from (scenario seed, purpose, run).
 //!
 //! ```
@@ -55,6 +57,7 @@ pub mod policy;
 pub mod pose;
 pub mod science;
 pub mod seeds;
+pub mod slip_profile;
 pub mod sol_plan;
 mod sol_run;
 pub mod strategy;

@@ -28,11 +28,20 @@ pub enum FaultKind {
     /// The rover's estimated position lies outside the shrunk keep-in union.
     #[serde(rename = "KEEP_IN")]
     KeepIn,
+    /// The onboard slip check stopped the drive: VO measured slip above the limit
+    /// ([`crate::autonav::ProfileSlip::slip_limit`]).
+    #[serde(rename = "SLIP")]
+    Slip,
 }
 
 impl FaultKind {
     /// Every fault kind.
-    pub const ALL: [FaultKind; 3] = [FaultKind::NoPath, FaultKind::KeepOut, FaultKind::KeepIn];
+    pub const ALL: [FaultKind; 4] = [
+        FaultKind::NoPath,
+        FaultKind::KeepOut,
+        FaultKind::KeepIn,
+        FaultKind::Slip,
+    ];
 
     /// The fault kind called `name` (as printed by [`FaultKind::name`]).
     #[must_use]
@@ -40,13 +49,14 @@ impl FaultKind {
         Self::ALL.into_iter().find(|k| k.name() == name)
     }
 
-    /// The flight-style name (`NO_PATH`, `KEEP_OUT`, `KEEP_IN`).
+    /// The flight-style name (`NO_PATH`, `KEEP_OUT`, `KEEP_IN`, `SLIP`).
     #[must_use]
     pub fn name(self) -> &'static str {
         match self {
             FaultKind::NoPath => "NO_PATH",
             FaultKind::KeepOut => "KEEP_OUT",
             FaultKind::KeepIn => "KEEP_IN",
+            FaultKind::Slip => "SLIP",
         }
     }
 }

@@ -24,8 +24,10 @@ use rapier3d_f64::prelude::*;
 use localization::ekf::MARS_SURFACE_GRAVITY_M_PER_S2;
 
 mod rover;
+pub mod soil;
 
 pub use rover::{Heading, RoverBody, SlopeDrive, drive_on_slope};
+pub use soil::Soil;
 
 /// What [`incline_slide`] or [`rolling_wheel`] measured.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -171,14 +173,6 @@ impl Slope {
     fn new(slope_deg: f64, friction: f64) -> Self {
         Self {
             tilt: Rotation::from_rotation_z(-slope_deg.to_radians()),
-            friction,
-        }
-    }
-
-    /// The same slab tilted the other way: +x runs uphill.
-    fn uphill_x(slope_deg: f64, friction: f64) -> Self {
-        Self {
-            tilt: Rotation::from_rotation_z(slope_deg.to_radians()),
             friction,
         }
     }

@@ -27,6 +27,14 @@ pub struct GridParams {
     pub footprint_radius_m: f64,
     /// Cells steeper than this are hazards, degrees (default: 25).
     pub max_slope_deg: f64,
+    /// Keep the DEM's gradient per cell ([`PlanningGrid::gradient`]), for slip that depends on
+    /// the slope along the heading (default: false; [`GridParams::GRADIENT_BYTES_PER_CELL`]).
+    pub gradient_layer: bool,
+}
+
+impl GridParams {
+    /// Memory per cell of the gradient layer, bytes (two `f32`).
+    pub const GRADIENT_BYTES_PER_CELL: u64 = 8;
 }
 
 impl Default for GridParams {
@@ -35,6 +43,7 @@ impl Default for GridParams {
             resolution_m: 1.0,
             footprint_radius_m: 1.5,
             max_slope_deg: 25.0,
+            gradient_layer: false,
         }
     }
 }
@@ -58,6 +67,9 @@ pub struct PlanningGrid {
     pub hazard: Vec<bool>,
     /// Terrain class code per cell (see [`TerrainClass::code`]; 0 = no data, treated as soil).
     pub terrain: Vec<u8>,
+    /// DEM gradient per cell, `[∂z/∂x (east), ∂z/∂y (north)]`, metres per metre; empty unless
+    /// built with [`GridParams::gradient_layer`].
+    pub gradient: Vec<[f32; 2]>,
     /// The rover footprint radius the clearances already subtract, metres: a keep-out closes
     /// the cells within `r + footprint_radius_m` of it.
     pub footprint_radius_m: f64,
@@ -73,20 +85,28 @@ impl PlanningGrid {
         let res = params.resolution_m;
         let [width, height] = Self::size_for([x1 - x0, y1 - y0], res);
         let geo = GeoTransform::new(x0, y1, res);
-        let slope = layers.dem.slope_deg();
+        let gradient_px = layers.dem.gradient();
+        let slope = |g: [f32; 2]| f64::from(g[0].hypot(g[1]).atan().to_degrees());
         let mut hazard = vec![false; width * height];
         let mut terrain = vec![0u8; width * height];
+        let mut gradient = if params.gradient_layer {
+            vec![[0.0f32; 2]; width * height]
+        } else {
+            Vec::new()
+        };
         for row in 0..height {
             for col in 0..width {
                 let (x, y) = geo.center_of(col, row);
                 let i = row * width + col;
-                hazard[i] = slope
-                    .sample_nearest(x, y)
-                    .is_some_and(|s| f64::from(s) > params.max_slope_deg);
+                let g = gradient_px.sample_nearest(x, y);
+                hazard[i] = g.is_some_and(|g| slope(g) > params.max_slope_deg);
                 terrain[i] = layers.terrain.sample_nearest(x, y).unwrap_or(0);
+                if let (Some(g), Some(cell)) = (g, gradient.get_mut(i)) {
+                    *cell = g;
+                }
             }
         }
-        Self::from_parts(
+        let mut grid = Self::from_parts(
             zones,
             geo,
             width,
@@ -94,7 +114,9 @@ impl PlanningGrid {
             params.footprint_radius_m,
             hazard,
             terrain,
-        )
+        );
+        grid.gradient = gradient;
+        grid
     }
 
     /// Width and height, cells, of the grid of `resolution_m` cells over a map of `extent_m`
@@ -171,6 +193,7 @@ impl PlanningGrid {
             clearance_m,
             hazard,
             terrain,
+            gradient: Vec::new(),
             footprint_radius_m,
             astar_pool: AStarPool::default(),
         }

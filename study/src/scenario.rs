@@ -22,8 +22,8 @@ use localization::onboard::OnboardSettings;
 use localization::particle::{KldParams, ParticleParams, Resampling};
 use maps::{GeoTransform, MapLayers, MemoryBudget, ZoneSet};
 pub use raw::RawScenario;
-use raw::{RawErrors, RawPerTerrain};
-use sim::autonav::{PerTerrain, RoverParams};
+use raw::{RawErrors, RawPerTerrain, RawRover};
+use sim::autonav::{PerTerrain, ProfileSlip, RoverParams, SlipModel};
 use sim::calendar::{Calendar, HistoricSol, Planning, SolEntry};
 use sim::campaign::{self, Campaign};
 use sim::errors::{ErrorModel, ErrorPreset};
@@ -280,6 +280,62 @@ fn per_terrain(
 }
 
 /// The `[errors]` section: a preset (`model`, default "calibrated") and field overrides.
+/// `[rover] slip_model` and its settings: `"terrain"` (the default) refuses the profile's
+/// settings rather than ignoring them.
+fn slip_model(
+    c: &Check<'_>,
+    r: &RawRover,
+    slip_sigma_relative: f64,
+) -> Result<SlipModel, ScenarioError> {
+    let profile = match r.slip_model.as_deref() {
+        None | Some("terrain") => false,
+        Some("profile") => true,
+        Some(other) => {
+            return Err(ScenarioError::field(
+                c.path,
+                "rover.slip_model",
+                "\"terrain\" (slip per terrain class) or \"profile\" (slip by class, slope and heading from the rapier rover's profile)",
+                format!("{other:?}"),
+            ));
+        }
+    };
+    if !profile {
+        let stray = [
+            ("rover.slip_aware_routing", r.slip_aware_routing.is_some()),
+            ("rover.slip_limit", r.slip_limit.is_some()),
+            ("rover.avoid_slip_above", r.avoid_slip_above.is_some()),
+            ("rover.max_tilt_deg", r.max_tilt_deg.is_some()),
+        ];
+        if let Some(&(field, _)) = stray.iter().find(|(_, set)| *set) {
+            return Err(ScenarioError::field(
+                c.path,
+                field,
+                "no value unless rover.slip_model = \"profile\"",
+                "a value".to_owned(),
+            ));
+        }
+        return Ok(SlipModel::Terrain);
+    }
+    let d = ProfileSlip::default();
+    let slip_limit = r.slip_limit.map_or(Ok(d.slip_limit), |v| {
+        c.in_range("rover.slip_limit", v, 0.05, 0.95, "a fraction")
+    })?;
+    Ok(SlipModel::Profile(ProfileSlip {
+        aware_routing: r.slip_aware_routing.unwrap_or(d.aware_routing),
+        slip_limit,
+        avoid_slip_above: r.avoid_slip_above.map_or(
+            Ok(ProfileSlip::derived_avoid_slip_above(
+                slip_limit,
+                slip_sigma_relative,
+            )),
+            |v| c.in_range("rover.avoid_slip_above", v, 0.0, 0.95, "a fraction"),
+        )?,
+        max_tilt_deg: r.max_tilt_deg.map_or(Ok(d.max_tilt_deg), |v| {
+            c.in_range("rover.max_tilt_deg", v, 1.0, 45.0, "degrees")
+        })?,
+    }))
+}
+
 fn error_model(c: &Check<'_>, raw: RawErrors) -> Result<ErrorModel, ScenarioError> {
     let preset = match raw.model.as_deref() {
         None => ErrorPreset::Calibrated,
@@ -386,6 +442,8 @@ impl ScenarioSpec {
         // Rover, uncertainty, localizer, operations.
         let d = RoverParams::default();
         let r = raw.rover;
+        let errors = error_model(&c, raw.errors)?;
+        let slip = slip_model(&c, &r, errors.slip_sigma_relative)?;
         let rover = RoverParams {
             drive_rate_m_per_h: r.drive_rate_m_per_h.map_or(Ok(d.drive_rate_m_per_h), |v| {
                 c.positive_at_most(
@@ -413,7 +471,8 @@ impl ScenarioSpec {
             edge_buffer_m: r.edge_buffer_m.map_or(Ok(d.edge_buffer_m), |v| {
                 c.in_range("rover.edge_buffer_m", v, 0.0, MAX_MARGIN_M, "metres")
             })?,
-            errors: error_model(&c, raw.errors)?,
+            errors,
+            slip_model: slip,
         };
         let gd = GridParams::default();
         let grid_params = GridParams {
@@ -440,6 +499,7 @@ impl ScenarioSpec {
             max_slope_deg: raw.grid.max_slope_deg.map_or(Ok(gd.max_slope_deg), |v| {
                 c.positive_at_most("grid.max_slope_deg", v, 90.0, "degrees")
             })?,
+            gradient_layer: matches!(rover.slip_model, SlipModel::Profile(_)),
         };
         let ud = UncertaintyModel::default();
         let model = UncertaintyModel {
@@ -1131,7 +1191,12 @@ impl Scenario {
             }
             items.push((field, h.bytes_as(bytes_per_px), Some((p.as_path(), h))));
         }
-        let per_cell = PlanningGrid::BYTES_PER_CELL.saturating_add(
+        let gradient = if spec.grid.gradient_layer {
+            GridParams::GRADIENT_BYTES_PER_CELL
+        } else {
+            0
+        };
+        let per_cell = (PlanningGrid::BYTES_PER_CELL + gradient).saturating_add(
             PlanningGrid::SEARCH_BYTES_PER_CELL.saturating_mul(rayon::current_num_threads() as u64),
         );
         let grid_bytes = |extent_m: [f64; 2]| {

@@ -14,7 +14,12 @@
 
 use rapier3d_f64::prelude::*;
 
-use super::{PhysicsError, Slope, check, check_experiment};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use localization::ekf::MARS_SURFACE_GRAVITY_M_PER_S2;
+
+use super::soil::{Contact, Soil};
+use super::{PhysicsError, check, check_experiment};
 
 /// Where the rover heads relative to the slope.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -76,65 +81,118 @@ impl Default for RoverBody {
     }
 }
 
+impl RoverBody {
+    /// Total mass, kilograms: the chassis box and six solid wheel cylinders at their densities
+    /// (the defaults: 57.6 kg + 6 × 19.6 kg = 175.4 kg).
+    #[must_use]
+    pub fn mass_kg(&self) -> f64 {
+        let [hx, hy, hz] = self.chassis_half_m;
+        let wheel = std::f64::consts::PI * self.wheel_radius_m.powi(2) * self.wheel_width_m;
+        8.0 * hx * hy * hz * self.chassis_density_kg_per_m3
+            + 6.0 * wheel * self.wheel_density_kg_per_m3
+    }
+}
+
 /// What a drive on the slope measured.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SlopeDrive {
-    /// Distance the chassis moved along its commanded heading, metres.
+    /// Distance the chassis moved along its commanded heading over the measured (second) half
+    /// of the drive, metres.
     pub progress_m: f64,
-    /// Distance the wheels' rotation commanded (ω r t), metres.
+    /// Distance the wheels' rotation commanded (ω r t) over that half, metres.
     pub commanded_m: f64,
     /// `1 − progress / commanded` (0: no slip; 1: no progress; above 1: sliding back).
     pub slip: f64,
-    /// Sideways drift of the chassis, to its left positive, metres.
+    /// Sideways drift of the chassis over the whole drive, to its left positive, metres.
     pub drift_left_m: f64,
     /// Tilt of the chassis at the end: the angle between its up axis and the vertical, degrees.
     pub tilt_deg: f64,
+    /// Static sinkage of a wheel in the soil (Bekker), metres; 0 on rigid ground.
+    pub sinkage_m: f64,
 }
 
-/// Drive `body` for `duration_s` at `speed_m_per_s` (the wheels' rim speed) on a plane slope of
-/// `slope_deg` with friction `friction`, heading `heading`.
+/// Drive `body` on `soil` for `duration_s` at `speed_m_per_s` (the wheels' rim speed), on a
+/// plane slope of `slope_deg` built as a heightfield collider, heading `heading`. Slip is
+/// measured over the second half of the drive, once the start from rest has settled.
+///
+/// Rigid soil (bedrock) is rapier's Coulomb contact with `μ = tan φ`. On deformable soil each
+/// wheel–ground contact's friction is set every step, through a rapier contact hook, to the
+/// Janosi–Hanamoto traction the soil gives at the wheel's slip ([`Soil::traction_coefficient`]).
+/// The slip is the sliding speed of the wheel's lowest point over the rim speed, as the soil's
+/// shear follows it: relaxed towards the current value over the time a soil element takes to
+/// cross the contact patch, `l / (ω r)` (about 2 s on sand). Each wheel is also held back by
+/// its compaction resistance `R_c` along the rover's forward axis. The load behind both is the
+/// wheel's static share of the rover's weight normal to the slope.
 ///
 /// # Errors
-/// [`PhysicsError::Invalid`] for a parameter out of range (as [`super::incline_slide`]; speed
-/// 0 < v ≤ 1 m/s).
+/// [`PhysicsError::Invalid`] for a parameter out of range (slope 0 ≤ θ < 90°, speed
+/// 0 < v ≤ 1 m/s, duration 0 < t ≤ 60 s).
 pub fn drive_on_slope(
     body: &RoverBody,
     slope_deg: f64,
     heading: Heading,
-    friction: f64,
+    soil: &Soil,
     speed_m_per_s: f64,
     duration_s: f64,
 ) -> Result<SlopeDrive, PhysicsError> {
-    check_experiment(slope_deg, friction, duration_s)?;
+    check_experiment(slope_deg, soil.tan_phi(), duration_s)?;
     check(
         "speed_m_per_s",
         speed_m_per_s,
         "0 < speed ≤ 1 m/s",
         speed_m_per_s > 0.0 && speed_m_per_s <= 1.0,
     )?;
-    // The slab tilts about z with +x uphill; the rover is yawed about the slab's normal.
-    let slope = Slope::uphill_x(slope_deg, friction);
-    let mut world = slope.world();
-    let pose = slope.tilt * Rotation::from_rotation_y(heading.yaw_rad());
+    let theta = slope_deg.to_radians();
+    // The ground: a heightfield rising along +x, 40 m square, centred on the rover's start.
+    let tilt = Rotation::from_rotation_z(theta);
+    let mut world = PhysicsWorld {
+        gravity: Vector::new(0.0, -MARS_SURFACE_GRAVITY_M_PER_S2, 0.0),
+        ..PhysicsWorld::default()
+    };
+    let (side_m, cells) = (40.0, 40);
+    let mut heights = Array2::zeros(cells + 1, cells + 1);
+    for i in 0..=cells {
+        for j in 0..=cells {
+            let x = side_m * (j as f64 / cells as f64 - 0.5);
+            let at = heights.flat_index(i, j);
+            heights.data_mut()[at] = x * theta.tan();
+        }
+    }
+    let ground = ColliderBuilder::heightfield(heights, Vector::new(side_m, 1.0, side_m))
+        .friction(soil.tan_phi())
+        .friction_combine_rule(CoefficientCombineRule::Min)
+        .restitution(0.0)
+        .active_hooks(ActiveHooks::MODIFY_SOLVER_CONTACTS);
+    let (_, ground) = world.insert(RigidBodyBuilder::fixed(), ground);
+    let wheel_material = |c: ColliderBuilder| {
+        c.friction(10.0)
+            .friction_combine_rule(CoefficientCombineRule::Min)
+            .restitution(0.0)
+    };
+
+    let pose = tilt * Rotation::from_rotation_y(heading.yaw_rad());
     let r = body.wheel_radius_m;
-    let centre = slope.normal() * (super::SLAB_HALF_THICKNESS_M + r + body.clearance_m);
+    let centre = (tilt * Vector::Y) * (r + body.clearance_m);
     let [hx, hy, hz] = body.chassis_half_m;
     let (chassis, _) = world.insert(
         RigidBodyBuilder::dynamic()
+            .can_sleep(false)
             .translation(centre)
             .rotation(pose.to_scaled_axis()),
-        slope.material(ColliderBuilder::cuboid(hx, hy, hz).density(body.chassis_density_kg_per_m3)),
+        wheel_material(ColliderBuilder::cuboid(hx, hy, hz).density(body.chassis_density_kg_per_m3)),
     );
     let omega = speed_m_per_s / r;
+    let mut wheels = Vec::with_capacity(6);
     for x in body.wheel_x_m {
         for z in [body.half_track_m, -body.half_track_m] {
             let local = Vector::new(x, -body.clearance_m, z);
             let (wheel, _) = world.insert(
                 RigidBodyBuilder::dynamic()
+                    .can_sleep(false)
                     .translation(centre + pose * local)
                     .rotation(pose.to_scaled_axis()),
                 // Rapier's cylinder runs along y: turn it to the axle, the body's z.
-                slope.material(
+                wheel_material(
                     ColliderBuilder::cylinder(0.5 * body.wheel_width_m, r)
                         .rotation(Vector::X * std::f64::consts::FRAC_PI_2)
                         .density(body.wheel_density_kg_per_m3),
@@ -147,25 +205,102 @@ pub fn drive_on_slope(
                 .motor_velocity(-omega, 1e4)
                 .contacts_enabled(false);
             world.insert_impulse_joint(chassis, wheel, axle);
+            wheels.push(wheel);
         }
     }
-    let start = world.bodies[chassis].translation();
-    let steps = (duration_s / world.integration_parameters.dt).round() as usize;
-    for _ in 0..steps {
-        world.step();
+    let load_n = body.mass_kg() * MARS_SURFACE_GRAVITY_M_PER_S2 * theta.cos() / 6.0;
+    let contact = soil.contact(load_n, r, body.wheel_width_m);
+    let hooks = SoilHook {
+        soil: *soil,
+        contact,
+        ground,
+        wheel_colliders: wheels
+            .iter()
+            .map(|&w| world.bodies[w].colliders()[0])
+            .collect(),
+        shear_slip: wheels
+            .iter()
+            .map(|_| AtomicU64::new(0f64.to_bits()))
+            .collect(),
+    };
+
+    let dt = world.integration_parameters.dt;
+    // The soil's shear follows a change of slip over the time a soil element takes to cross
+    // the contact patch (Janosi–Hanamoto's displacement j = s x accumulates along it).
+    let relax = if contact.length_m > 0.0 {
+        (dt * speed_m_per_s / contact.length_m).min(1.0)
+    } else {
+        1.0
+    };
+    let normal = tilt * Vector::Y;
+    let steps = (duration_s / dt).round() as usize;
+    let settle = steps / 2;
+    let mut from = world.bodies[chassis].translation();
+    let start = from;
+    for step in 0..steps {
+        if step == settle {
+            from = world.bodies[chassis].translation();
+        }
+        let forward = world.bodies[chassis].rotation() * Vector::X;
+        for (k, &w) in wheels.iter().enumerate() {
+            let wheel = &mut world.bodies[w];
+            // The wheel's slip at its lowest point: the sliding speed over the rim speed.
+            let bottom = wheel.translation() - normal * r;
+            let v = wheel.velocity_at_point(bottom);
+            let slip = ((v - normal * v.dot(normal)).length() / speed_m_per_s).min(1.0);
+            let state = &hooks.shear_slip[k];
+            let old = f64::from_bits(state.load(Ordering::Relaxed));
+            state.store((old + relax * (slip - old)).to_bits(), Ordering::Relaxed);
+            wheel.reset_forces(false);
+            wheel.add_force(-forward * contact.resistance_n, true);
+        }
+        world.step_with_events(&hooks, &());
     }
-    let t = steps as f64 * world.integration_parameters.dt;
-    let moved = world.bodies[chassis].translation() - start;
-    let progress_m = moved.dot(pose * Vector::X);
-    let commanded_m = speed_m_per_s * t;
+    let measured_s = (steps - settle) as f64 * dt;
+    let end = world.bodies[chassis].translation();
+    let along = pose * Vector::X;
+    let progress_m = (end - from).dot(along);
+    let commanded_m = speed_m_per_s * measured_s;
     let up = world.bodies[chassis].rotation() * Vector::Y;
     Ok(SlopeDrive {
         progress_m,
         commanded_m,
         slip: 1.0 - progress_m / commanded_m,
-        drift_left_m: moved.dot(pose * Vector::Z),
+        drift_left_m: (end - start).dot(pose * Vector::Z),
         tilt_deg: up.dot(Vector::Y).clamp(-1.0, 1.0).acos().to_degrees(),
+        sinkage_m: contact.sinkage_m,
     })
+}
+
+/// The soil contact: each step, the friction of a wheel's contact with the ground is the
+/// traction the soil gives at that wheel's slip, as the soil's shear has followed it.
+struct SoilHook {
+    soil: Soil,
+    contact: Contact,
+    ground: ColliderHandle,
+    /// Each wheel's collider, in wheel order.
+    wheel_colliders: Vec<ColliderHandle>,
+    /// Each wheel's slip as the soil's shear has followed it (`f64` bits), set by the stepping
+    /// loop before every step.
+    shear_slip: Vec<AtomicU64>,
+}
+
+impl PhysicsHooks for SoilHook {
+    fn modify_solver_contacts(&self, ctx: &mut ContactModificationContext) {
+        let wheel = if ctx.collider1 == self.ground {
+            ctx.collider2
+        } else {
+            ctx.collider1
+        };
+        let Some(k) = self.wheel_colliders.iter().position(|&c| c == wheel) else {
+            return;
+        };
+        let slip = f64::from_bits(self.shear_slip[k].load(Ordering::Relaxed));
+        let friction = self.soil.traction_coefficient(&self.contact, slip);
+        if let Some(manifold) = ctx.rigid_mut() {
+            *manifold.friction = friction;
+        }
+    }
 }
 
 #[cfg(test)]
@@ -181,7 +316,7 @@ mod tests {
     fn slip_is_a_step_at_the_friction_angle_on_rigid_ground() {
         let body = RoverBody::default();
         let drive = |slope_deg: f64, heading| {
-            drive_on_slope(&body, slope_deg, heading, 0.5, 0.05, 20.0).expect("valid")
+            drive_on_slope(&body, slope_deg, heading, &Soil::rigid(0.5), 0.05, 20.0).expect("valid")
         };
         let below = [0.0, 5.0, 10.0, 15.0, 20.0, 25.0];
         for heading in [Heading::UpSlope, Heading::DownSlope, Heading::CrossSlope] {
@@ -213,8 +348,15 @@ mod tests {
 
     #[test]
     fn a_bad_speed_is_refused() {
-        let e = drive_on_slope(&RoverBody::default(), 10.0, Heading::UpSlope, 0.5, 0.0, 1.0)
-            .expect_err("refused");
+        let e = drive_on_slope(
+            &RoverBody::default(),
+            10.0,
+            Heading::UpSlope,
+            &Soil::SAND,
+            0.0,
+            1.0,
+        )
+        .expect_err("refused");
         assert!(e.to_string().starts_with("speed_m_per_s"), "{e}");
     }
 }

@@ -88,6 +88,11 @@ pub(crate) struct RawRover {
     pub(crate) waypoint_tolerance_m: Option<f64>,
     pub(crate) terrain_cost: Option<RawPerTerrain>,
     pub(crate) edge_buffer_m: Option<f64>,
+    pub(crate) slip_model: Option<String>,
+    pub(crate) slip_aware_routing: Option<bool>,
+    pub(crate) slip_limit: Option<f64>,
+    pub(crate) avoid_slip_above: Option<f64>,
+    pub(crate) max_tilt_deg: Option<f64>,
 }
 
 #[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
