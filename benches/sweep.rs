@@ -9,6 +9,14 @@
 //! - `paired_bootstrap_1000_x_10000`: one paired difference's 95 % interval, 10 000 resamples
 //!   of 1000 runs (the peer is `scipy.stats.bootstrap`, `peers/bench_sweep.py`).
 //!
+//! - `runs_dune_crossing_ground/{slip_aware,slip_unaware}`: 10 run indices of
+//!   `scenarios/dune-crossing.toml` and its slip-blind twin under `ground` (issue 15): slip
+//!   from the rapier rover's profile every step; the slip-aware one plans with
+//!   direction-dependent move costs (`AStar::plan_edges`);
+//! - `runs_rapid_traverse_5_strategies_slip_profile/10`: the first benchmark with the rapid
+//!   traverse's `[rover]` switched to `slip_model = "profile"` (slip-aware routing), what the
+//!   slip model costs a sweep on the 4800 × 1000 grid.
+//!
 //! `SOLSIM_SWEEP_DUMP=DIR` also writes the benchmark's `sols.parquet` and the bootstrap input
 //! there, for the peer script to time the same data.
 
@@ -20,8 +28,30 @@ use study::Scenario;
 use sweep::engine::{SweepSpec, run_in_memory};
 
 fn scenario() -> Scenario {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/rapid-traverse-379-409.toml");
+    bundled("rapid-traverse-379-409.toml")
+}
+
+fn bundled(name: &str) -> Scenario {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenarios")
+        .join(name);
     Scenario::load(&path).expect("bundled scenario loads")
+}
+
+/// The rapid traverse with `slip_model = "profile"`, written with absolute map paths into `dir`.
+fn rapid_traverse_slip_profile(dir: &Path) -> Scenario {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(root.join("scenarios/rapid-traverse-379-409.toml"))
+        .expect("read")
+        .replace("\"../maps/", &format!("\"{}/maps/", root.display()))
+        .replace(
+            "zones = \"",
+            &format!("zones = \"{}/scenarios/", root.display()),
+        )
+        .replacen("\n[rover]\n", "\n[rover]\nslip_model = \"profile\"\n", 1);
+    let path = dir.join("rapid-traverse-slip-profile.toml");
+    std::fs::write(&path, text).expect("write");
+    Scenario::load(&path).expect("the slip-profile rapid traverse loads")
 }
 
 fn sol_rows(scenario: &Scenario, runs: u64) -> Vec<sweep::rows::SolRow> {
@@ -47,6 +77,29 @@ fn bench_sweep(c: &mut Criterion) {
         BenchmarkId::new("runs_rapid_traverse_5_strategies", 10),
         &spec,
         |b, spec| b.iter(|| run_in_memory(&scenario, spec, 0..spec.runs)),
+    );
+
+    for (name, file) in [
+        ("slip_aware", "dune-crossing.toml"),
+        ("slip_unaware", "dune-crossing-slip-unaware.toml"),
+    ] {
+        let dune = bundled(file);
+        let mut spec = SweepSpec::new(&dune, 10);
+        spec.strategies = vec![sim::Strategy::Ground];
+        spec.baseline = None;
+        group.bench_with_input(
+            BenchmarkId::new("runs_dune_crossing_ground", name),
+            &spec,
+            |b, spec| b.iter(|| run_in_memory(&dune, spec, 0..spec.runs)),
+        );
+    }
+    let tmp = tempfile::tempdir().expect("tempdir");
+    let profile = rapid_traverse_slip_profile(tmp.path());
+    let spec_profile = SweepSpec::new(&profile, 10);
+    group.bench_with_input(
+        BenchmarkId::new("runs_rapid_traverse_5_strategies_slip_profile", 10),
+        &spec_profile,
+        |b, spec| b.iter(|| run_in_memory(&profile, spec, 0..spec.runs)),
     );
 
     let rows = sol_rows(&scenario, 10);

@@ -136,6 +136,14 @@ section_sweep() {
             --quiet --out "$out/rapid-$threads"
     done
     cmp "$out/rapid-1/runs.parquet" "$out/rapid-2/runs.parquet" && echo "1 and 2 threads: identical runs.parquet"
+    # The same with slip from the rapier rover's profile and slip-aware routing (issue 15): a
+    # copy of the scenario with absolute map paths and `slip_model = "profile"` under [rover].
+    sed -e "s|\"\.\./maps/|\"$PWD/maps/|" -e "s|^zones = \"|zones = \"$PWD/scenarios/|" \
+        -e 's|^\[rover\]$|[rover]\nslip_model = "profile"|' \
+        scenarios/rapid-traverse-379-409.toml > "$out/rapid-slip-profile.toml"
+    echo "== sweep: rapid traverse with slip_model = \"profile\", $runs runs x 5 strategies, 2 threads (target <= 120 s) =="
+    /usr/bin/time -f "rapid traverse slip profile 2 threads: %e s wall, %U s user, %M KB peak" \
+        "$bin" sweep "$out/rapid-slip-profile.toml" --runs "$runs" --threads 2 --quiet --out "$out/rapid-slip"
     echo "== sweep: sol383-386 (census localizer), 200 runs x 5 strategies, 2 threads (target <= 60 s) =="
     /usr/bin/time -f "sol383-386 census: %e s wall, %U s user, %M KB peak" \
         "$bin" sweep scenarios/sol383-386.toml --runs 200 --threads 2 --quiet --out "$out/s383"

@@ -3,6 +3,7 @@
 //! profile's trend against the closed-form terramechanics it stands on and the published record;
 //! and the scenario's slip settings refused with the field named.
 
+use sim::physics::{Heading, RoverBody, Soil, drive_on_dem, drive_on_slope};
 use sim::slip_profile::{ProfileHeading, SlipProfile};
 
 use maps::TerrainClass;
@@ -179,4 +180,76 @@ fn slip_settings_are_checked() {
     });
     let o = solsim().arg("validate").arg(&path).output().expect("runs");
     assert_eq!(o.status.code(), Some(0), "{}", common::stderr(&o));
+}
+
+/// The rover on a DEM (`drive_on_dem`: the DEM patch as a heightfield, each wheel on the soil of
+/// its terrain class) driving up a plane DEM of sand slips as the plane profile says, and as the
+/// profile's lookup along its path predicts: within 2 slip points at 0°, 10° and 20° (measured:
+/// 6.02 / 5.95 / 5.95 %, 14.45 / 14.23 / 14.48 %, 31.06 / 30.32 / 29.87 %: DEM, plane,
+/// predicted).
+#[test]
+fn the_rover_on_a_plane_dem_slips_as_the_profile_says() {
+    let geo = maps::GeoTransform::new(0.0, 200.0, 1.0);
+    let body = RoverBody::default();
+    for slope_deg in [0.0f64, 10.0, 20.0] {
+        let t = slope_deg.to_radians().tan();
+        let mut dem = maps::Raster::filled(200, 200, geo, 0.0f32);
+        for (k, h) in dem.data.iter_mut().enumerate() {
+            // Rising to the west: heading west (180°) drives uphill.
+            *h = (100.0 - (k % 200) as f64 * t) as f32;
+        }
+        let sand = maps::Raster::filled(200, 200, geo, TerrainClass::Sand.code());
+        let d = drive_on_dem(&body, &dem, &sand, [100.0, 100.0], 180.0, 0.05, 20.0).expect("drive");
+        let plane = drive_on_slope(&body, slope_deg, Heading::UpSlope, &Soil::SAND, 0.05, 20.0)
+            .expect("plane");
+        assert!(
+            (d.slip - plane.slip).abs() < 0.02,
+            "{slope_deg}°: {d:?} vs {plane:?}"
+        );
+        assert!(
+            (d.slip - d.predicted_slip).abs() < 0.02,
+            "{slope_deg}°: {d:?}"
+        );
+        assert!(
+            (d.mean_tilt_deg - slope_deg).abs() < 0.2,
+            "{slope_deg}°: {d:?}"
+        );
+    }
+}
+
+/// On the dune crossing's own DEM the order holds: from the foot of the dune's steep side
+/// (395, 150), up it slips most, across it less, down it the wheels brake; on the level soil
+/// near the start the rover barely slips. The size does not follow the plane profile: on this
+/// 1 m heightfield the rover slips more than the profile predicts along its path (measured:
+/// up 60.4 % against 36.1 % at a mean tilt of 22°; at the dune's foot 28.3 % against 11.6 %),
+/// which the traverse, reading the profile, does not see (an open question of issue 15).
+#[test]
+fn the_rover_on_the_dune_dem_slips_most_uphill() {
+    let dir = crate::common::root().join("maps/assets/dune-crossing");
+    let dem = maps::raster_io::read_dem(&dir.join("dem.tif"), 0.0, None).expect("dem");
+    let terrain =
+        maps::raster_io::read_raster::<u8>(&dir.join("terrain.tif"), None).expect("terrain");
+    let body = RoverBody::default();
+    let drive = |start: [f64; 2], heading_deg: f64| {
+        drive_on_dem(&body, &dem, &terrain, start, heading_deg, 0.05, 40.0).expect("drive")
+    };
+    let (up, across, down) = (
+        drive([395.0, 150.0], 180.0),
+        drive([395.0, 150.0], 90.0),
+        drive([395.0, 150.0], 0.0),
+    );
+    assert!(up.mean_tilt_deg > 15.0, "{up:?}");
+    assert!(
+        up.slip > across.slip && across.slip > 0.0 && down.slip < 0.0,
+        "{up:?} {across:?} {down:?}"
+    );
+    assert!(up.predicted_slip > across.predicted_slip && down.predicted_slip < 0.0);
+    let level = drive([520.0, 150.0], 180.0);
+    assert!(
+        level.slip.abs() < 0.06 && level.predicted_slip.abs() < 0.06,
+        "{level:?}"
+    );
+    let e = drive_on_dem(&body, &dem, &terrain, [3.0, 150.0], 180.0, 0.05, 40.0)
+        .expect_err("a patch off the map");
+    assert!(e.to_string().starts_with("start_m"), "{e}");
 }

@@ -463,6 +463,13 @@ pub fn drive_sol(
         } else {
             cmd
         };
+        // The flight software's slip check: VO measured this step's progress against the
+        // command. Without VO the rover cannot see its slip.
+        let measured_slip = if vo_ok && cmd_len > 0.0 {
+            1.0 - d_est.dot(&cmd) / (cmd_len * cmd_len)
+        } else {
+            0.0
+        };
         let mut odo = d_est.norm();
         if odo > distance_left {
             let f = distance_left / odo;
@@ -471,13 +478,6 @@ pub fn drive_sol(
             cmd_len *= f;
             odo = distance_left;
         }
-        // The flight software's slip check: VO measured this step's progress against the
-        // command. Without VO the rover cannot see its slip.
-        let measured_slip = if vo_ok && cmd_len > 0.0 {
-            1.0 - d_est.dot(&cmd) / (cmd_len * cmd_len)
-        } else {
-            0.0
-        };
         state.truth.position_m += d_true;
         state.estimate.position_m += d_est;
         state.uncertainty.drive(odo, novo_fraction);
@@ -515,7 +515,12 @@ fn slope_components(grid: &PlanningGrid, at: Vector2<f64>, heading: Vector2<f64>
     if n <= 0.0 {
         return (0.0, 0.0);
     }
-    let (ux, uy) = ((heading.x / n) as f32, (heading.y / n) as f32);
+    along_across(g, (heading.x / n) as f32, (heading.y / n) as f32)
+}
+
+/// The tangents of the slope of gradient `g` along the unit direction (`ux`, `uy`) (positive
+/// uphill) and across it.
+fn along_across(g: [f32; 2], ux: f32, uy: f32) -> (f32, f32) {
     (g[0] * ux + g[1] * uy, (g[0] * uy - g[1] * ux).abs())
 }
 
@@ -553,9 +558,7 @@ fn plan_path(
                     (to % width) as f32 - (from % width) as f32,
                 );
                 let len = dr.hypot(dc);
-                let (ux, uy) = (dc / len, -dr / len);
-                let g = grid.gradient[to];
-                let (along, across) = (g[0] * ux + g[1] * uy, (g[0] * uy - g[1] * ux).abs());
+                let (along, across) = along_across(grid.gradient[to], dc / len, -dr / len);
                 let class = grid.terrain_class(to);
                 let slip = table.slip(class, along, across);
                 if slip > limit || table.tilt_deg(class, along, across) > max_tilt {

@@ -3,8 +3,10 @@
 //!
 //! - [`incline_slide`]: a block on an incline under Mars gravity.
 //! - [`rolling_wheel`]: a wheel rolling down it, without slip or slipping.
-//! - [`drive_on_slope`]: a six-wheel rover ([`RoverBody`]) driving up, down or across it
-//!   ([`rover`](self) module docs: rigid contact makes slip a step at the friction angle).
+//! - [`drive_on_slope`]: a six-wheel rover ([`RoverBody`]) driving up, down or across a plane
+//!   slope (a heightfield) on a terramechanics [`Soil`] or rigid ground;
+//! - [`drive_on_dem`]: the same rover on a patch of a map's DEM, each wheel on the soil of the
+//!   terrain class beneath it, its slip beside the slip profile's prediction.
 //!
 //! A block resting on a plane tilted by θ with Coulomb friction μ stays put when tan θ ≤ μ. Otherwise it
 //! slides with acceleration `g (sin θ − μ cos θ)`, so it covers `½ a t²` in `t` seconds. Rapier's
@@ -23,9 +25,11 @@ use rapier3d_f64::prelude::*;
 
 use localization::ekf::MARS_SURFACE_GRAVITY_M_PER_S2;
 
+mod dem_drive;
 mod rover;
 pub mod soil;
 
+pub use dem_drive::{DemDrive, drive_on_dem};
 pub use rover::{Heading, RoverBody, SlopeDrive, drive_on_slope};
 pub use soil::Soil;
 

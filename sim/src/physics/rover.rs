@@ -1,20 +1,18 @@
-//! A six-wheel rover in rapier, driving on a plane slope: the first building block of the slip
-//! profiles of issue 15.
+//! A six-wheel rover in rapier, driving on a plane slope built as a heightfield: what the slip
+//! profiles of issue 15 measure ([`crate::slip_profile`]).
 //!
 //! The linkage is the simplest one that can be defended on a plane: a rigid chassis carrying
 //! six wheels (three per side) on revolute joints, each with a velocity motor. On a plane all
-//! six wheels touch without a suspension. A rocker-bogie is needed for the DEM heightfield and
-//! is not built yet.
+//! six wheels touch without a suspension. A rocker-bogie, which would keep six wheels loaded on
+//! rough ground, is not built ([`super::drive_on_dem`] drives this rigid rover on a DEM).
 //!
-//! The contact is rigid Coulomb friction, so slip is a step. While the wheels' traction holds
-//! it stays small: rapier's regularised friction creeps, up to 5 % uphill at 25° for μ = 0.5.
-//! It becomes total once gravity along the slope beats friction (tan θ > μ for the whole
-//! rover). Graded slip on sand needs a soil-shear law on top; that is the next step. `tests`
-//! show the step.
+//! On rigid ground the contact is rapier's Coulomb friction, so slip is a step: while the
+//! wheels' traction holds it stays small (rapier's regularised friction creeps, up to 5 %
+//! uphill at 25° for μ = 0.5), and it becomes total once gravity along the slope beats friction
+//! (`tests` show the step). On sand and soil a contact hook ([`SoilHook`]) sets each wheel's
+//! friction from the terramechanics of [`super::soil`], and slip grows with slope.
 
 use rapier3d_f64::prelude::*;
-
-use std::sync::atomic::{AtomicU64, Ordering};
 
 use localization::ekf::MARS_SURFACE_GRAVITY_M_PER_S2;
 
@@ -158,81 +156,17 @@ pub fn drive_on_slope(
             heights.data_mut()[at] = x * theta.tan();
         }
     }
-    let ground = ColliderBuilder::heightfield(heights, Vector::new(side_m, 1.0, side_m))
-        .friction(soil.tan_phi())
-        .friction_combine_rule(CoefficientCombineRule::Min)
-        .restitution(0.0)
-        .active_hooks(ActiveHooks::MODIFY_SOLVER_CONTACTS);
-    let (_, ground) = world.insert(RigidBodyBuilder::fixed(), ground);
-    let wheel_material = |c: ColliderBuilder| {
-        c.friction(10.0)
-            .friction_combine_rule(CoefficientCombineRule::Min)
-            .restitution(0.0)
-    };
-
+    let ground = insert_ground(&mut world, heights, Vector::new(side_m, 1.0, side_m), soil);
     let pose = tilt * Rotation::from_rotation_y(heading.yaw_rad());
     let r = body.wheel_radius_m;
     let centre = (tilt * Vector::Y) * (r + body.clearance_m);
-    let [hx, hy, hz] = body.chassis_half_m;
-    let (chassis, _) = world.insert(
-        RigidBodyBuilder::dynamic()
-            .can_sleep(false)
-            .translation(centre)
-            .rotation(pose.to_scaled_axis()),
-        wheel_material(ColliderBuilder::cuboid(hx, hy, hz).density(body.chassis_density_kg_per_m3)),
-    );
-    let omega = speed_m_per_s / r;
-    let mut wheels = Vec::with_capacity(6);
-    for x in body.wheel_x_m {
-        for z in [body.half_track_m, -body.half_track_m] {
-            let local = Vector::new(x, -body.clearance_m, z);
-            let (wheel, _) = world.insert(
-                RigidBodyBuilder::dynamic()
-                    .can_sleep(false)
-                    .translation(centre + pose * local)
-                    .rotation(pose.to_scaled_axis()),
-                // Rapier's cylinder runs along y: turn it to the axle, the body's z.
-                wheel_material(
-                    ColliderBuilder::cylinder(0.5 * body.wheel_width_m, r)
-                        .rotation(Vector::X * std::f64::consts::FRAC_PI_2)
-                        .density(body.wheel_density_kg_per_m3),
-                ),
-            );
-            // Rolling forward (+x) turns a wheel clockwise about +z: a negative rate.
-            let axle = RevoluteJointBuilder::new(Vector::Z)
-                .local_anchor1(local)
-                .local_anchor2(Vector::ZERO)
-                .motor_velocity(-omega, 1e4)
-                .contacts_enabled(false);
-            world.insert_impulse_joint(chassis, wheel, axle);
-            wheels.push(wheel);
-        }
-    }
+    let rover = assemble(&mut world, body, centre, pose, speed_m_per_s);
+    let chassis = rover.chassis;
     let load_n = body.mass_kg() * MARS_SURFACE_GRAVITY_M_PER_S2 * theta.cos() / 6.0;
     let contact = soil.contact(load_n, r, body.wheel_width_m);
-    let hooks = SoilHook {
-        soil: *soil,
-        contact,
-        ground,
-        wheel_colliders: wheels
-            .iter()
-            .map(|&w| world.bodies[w].colliders()[0])
-            .collect(),
-        shear_slip: wheels
-            .iter()
-            .map(|_| AtomicU64::new(0f64.to_bits()))
-            .collect(),
-    };
-
-    let dt = world.integration_parameters.dt;
-    // The soil's shear follows a change of slip over the time a soil element takes to cross
-    // the contact patch (Janosi–Hanamoto's displacement j = s x accumulates along it).
-    let relax = if contact.length_m > 0.0 {
-        (dt * speed_m_per_s / contact.length_m).min(1.0)
-    } else {
-        1.0
-    };
+    let mut hooks = SoilHook::new(ground, &rover, r, *soil, contact);
     let normal = tilt * Vector::Y;
+    let dt = world.integration_parameters.dt;
     let steps = (duration_s / dt).round() as usize;
     let settle = steps / 2;
     let mut from = world.bodies[chassis].translation();
@@ -241,19 +175,7 @@ pub fn drive_on_slope(
         if step == settle {
             from = world.bodies[chassis].translation();
         }
-        let forward = world.bodies[chassis].rotation() * Vector::X;
-        for (k, &w) in wheels.iter().enumerate() {
-            let wheel = &mut world.bodies[w];
-            // The wheel's slip at its lowest point: the sliding speed over the rim speed.
-            let bottom = wheel.translation() - normal * r;
-            let v = wheel.velocity_at_point(bottom);
-            let slip = ((v - normal * v.dot(normal)).length() / speed_m_per_s).min(1.0);
-            let state = &hooks.shear_slip[k];
-            let old = f64::from_bits(state.load(Ordering::Relaxed));
-            state.store((old + relax * (slip - old)).to_bits(), Ordering::Relaxed);
-            wheel.reset_forces(false);
-            wheel.add_force(-forward * contact.resistance_n, true);
-        }
+        hooks.before_step(&mut world, &rover, speed_m_per_s, |_| normal);
         world.step_with_events(&hooks, &());
     }
     let measured_s = (steps - settle) as f64 * dt;
@@ -272,17 +194,159 @@ pub fn drive_on_slope(
     })
 }
 
+/// The ground collider: a heightfield of `heights` (rows north to south, columns west to east)
+/// spanning `scale` (x, height factor, z), centred on the origin, whose contacts go through the
+/// soil hook.
+pub(super) fn insert_ground(
+    world: &mut PhysicsWorld,
+    heights: Array2<f64>,
+    scale: Vector,
+    soil: &Soil,
+) -> ColliderHandle {
+    let ground = ColliderBuilder::heightfield(heights, scale)
+        .friction(soil.tan_phi())
+        .friction_combine_rule(CoefficientCombineRule::Min)
+        .restitution(0.0)
+        .active_hooks(ActiveHooks::MODIFY_SOLVER_CONTACTS);
+    world.insert(RigidBodyBuilder::fixed(), ground).1
+}
+
+/// The rover's bodies in a world.
+pub(super) struct Assembled {
+    /// The chassis.
+    pub(super) chassis: RigidBodyHandle,
+    /// The six wheels, front to back, left before right.
+    pub(super) wheels: Vec<RigidBodyHandle>,
+}
+
+/// Build `body` with its chassis centre at `centre` and orientation `pose` (x forward, y up,
+/// z left), every wheel motor turning for a rim speed of `speed_m_per_s`. Bodies never sleep
+/// (a sleeping rover would stop measuring).
+pub(super) fn assemble(
+    world: &mut PhysicsWorld,
+    body: &RoverBody,
+    centre: Vector,
+    pose: Rotation,
+    speed_m_per_s: f64,
+) -> Assembled {
+    let material = |c: ColliderBuilder| {
+        c.friction(10.0)
+            .friction_combine_rule(CoefficientCombineRule::Min)
+            .restitution(0.0)
+    };
+    let r = body.wheel_radius_m;
+    let [hx, hy, hz] = body.chassis_half_m;
+    let (chassis, _) = world.insert(
+        RigidBodyBuilder::dynamic()
+            .can_sleep(false)
+            .translation(centre)
+            .rotation(pose.to_scaled_axis()),
+        material(ColliderBuilder::cuboid(hx, hy, hz).density(body.chassis_density_kg_per_m3)),
+    );
+    let omega = speed_m_per_s / r;
+    let mut wheels = Vec::with_capacity(6);
+    for x in body.wheel_x_m {
+        for z in [body.half_track_m, -body.half_track_m] {
+            let local = Vector::new(x, -body.clearance_m, z);
+            let (wheel, _) = world.insert(
+                RigidBodyBuilder::dynamic()
+                    .can_sleep(false)
+                    .translation(centre + pose * local)
+                    .rotation(pose.to_scaled_axis()),
+                // Rapier's cylinder runs along y: turn it to the axle, the body's z.
+                material(
+                    ColliderBuilder::cylinder(0.5 * body.wheel_width_m, r)
+                        .rotation(Vector::X * std::f64::consts::FRAC_PI_2)
+                        .density(body.wheel_density_kg_per_m3),
+                ),
+            );
+            // Rolling forward (+x) turns a wheel clockwise about +z: a negative rate.
+            let axle = RevoluteJointBuilder::new(Vector::Z)
+                .local_anchor1(local)
+                .local_anchor2(Vector::ZERO)
+                .motor_velocity(-omega, 1e4)
+                .contacts_enabled(false);
+            world.insert_impulse_joint(chassis, wheel, axle);
+            wheels.push(wheel);
+        }
+    }
+    Assembled { chassis, wheels }
+}
+
 /// The soil contact: each step, the friction of a wheel's contact with the ground is the
-/// traction the soil gives at that wheel's slip, as the soil's shear has followed it.
-struct SoilHook {
-    soil: Soil,
-    contact: Contact,
+/// traction its soil gives at its slip, as the soil's shear has followed it.
+pub(super) struct SoilHook {
     ground: ColliderHandle,
+    wheel_radius_m: f64,
     /// Each wheel's collider, in wheel order.
     wheel_colliders: Vec<ColliderHandle>,
-    /// Each wheel's slip as the soil's shear has followed it (`f64` bits), set by the stepping
-    /// loop before every step.
-    shear_slip: Vec<AtomicU64>,
+    /// Each wheel's soil and static contact, in wheel order.
+    soils: Vec<(Soil, Contact)>,
+    /// Each wheel's slip as the soil's shear has followed it.
+    shear_slip: Vec<f64>,
+}
+
+impl SoilHook {
+    /// Every wheel of `rover` (wheels of `wheel_radius_m`) on `soil` with `contact`.
+    pub(super) fn new(
+        ground: ColliderHandle,
+        rover: &Assembled,
+        wheel_radius_m: f64,
+        soil: Soil,
+        contact: Contact,
+    ) -> Self {
+        Self {
+            ground,
+            wheel_radius_m,
+            wheel_colliders: Vec::new(),
+            soils: vec![(soil, contact); rover.wheels.len()],
+            shear_slip: vec![0.0; rover.wheels.len()],
+        }
+    }
+
+    /// Wheel `k` now rests on `soil` with `contact`.
+    pub(super) fn set_soil(&mut self, k: usize, soil: Soil, contact: Contact) {
+        self.soils[k] = (soil, contact);
+    }
+
+    /// Before a step: update each wheel's slip (the sliding speed of its lowest point, below it
+    /// along the ground's normal there, over the rim speed), relaxed over the time a soil
+    /// element takes to cross its contact patch (Janosi–Hanamoto's shear `j = s x` accumulates
+    /// along it), and push it back by its compaction resistance along the chassis' forward axis.
+    pub(super) fn before_step(
+        &mut self,
+        world: &mut PhysicsWorld,
+        rover: &Assembled,
+        speed_m_per_s: f64,
+        normal_at: impl Fn(Vector) -> Vector,
+    ) {
+        if self.wheel_colliders.is_empty() {
+            self.wheel_colliders = rover
+                .wheels
+                .iter()
+                .map(|&w| world.bodies[w].colliders()[0])
+                .collect();
+        }
+        let dt = world.integration_parameters.dt;
+        let forward = world.bodies[rover.chassis].rotation() * Vector::X;
+        for (k, &w) in rover.wheels.iter().enumerate() {
+            let (_, contact) = self.soils[k];
+            let wheel = &mut world.bodies[w];
+            let centre = wheel.translation();
+            let normal = normal_at(centre);
+            let bottom = centre - normal * self.wheel_radius_m;
+            let v = wheel.velocity_at_point(bottom);
+            let slip = ((v - normal * v.dot(normal)).length() / speed_m_per_s).min(1.0);
+            let relax = if contact.length_m > 0.0 {
+                (dt * speed_m_per_s / contact.length_m).min(1.0)
+            } else {
+                1.0
+            };
+            self.shear_slip[k] += relax * (slip - self.shear_slip[k]);
+            wheel.reset_forces(false);
+            wheel.add_force(-forward * contact.resistance_n, true);
+        }
+    }
 }
 
 impl PhysicsHooks for SoilHook {
@@ -295,8 +359,8 @@ impl PhysicsHooks for SoilHook {
         let Some(k) = self.wheel_colliders.iter().position(|&c| c == wheel) else {
             return;
         };
-        let slip = f64::from_bits(self.shear_slip[k].load(Ordering::Relaxed));
-        let friction = self.soil.traction_coefficient(&self.contact, slip);
+        let (soil, contact) = &self.soils[k];
+        let friction = soil.traction_coefficient(contact, self.shear_slip[k]);
         if let Some(manifold) = ctx.rigid_mut() {
             *manifold.friction = friction;
         }
