@@ -225,6 +225,16 @@ impl Slope {
     }
 }
 
+/// `Ok` for a rover's rim speed 0 < v ≤ 1 m/s.
+fn check_speed(speed_m_per_s: f64) -> Result<(), PhysicsError> {
+    check(
+        "speed_m_per_s",
+        speed_m_per_s,
+        "0 < speed ≤ 1 m/s",
+        speed_m_per_s > 0.0 && speed_m_per_s <= 1.0,
+    )
+}
+
 /// `Ok` if the experiment's parameters are in range.
 fn check_experiment(slope_deg: f64, friction: f64, duration_s: f64) -> Result<(), PhysicsError> {
     check(

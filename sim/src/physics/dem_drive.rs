@@ -14,7 +14,7 @@ use maps::{Raster, TerrainClass};
 use rapier3d_f64::prelude::*;
 
 use super::rover::{SoilHook, assemble, insert_ground};
-use super::{PhysicsError, RoverBody, Soil, check};
+use super::{PhysicsError, RoverBody, Soil, check, check_speed};
 use crate::slip_profile::SlipTable;
 use localization::ekf::MARS_SURFACE_GRAVITY_M_PER_S2;
 
@@ -53,12 +53,7 @@ pub fn drive_on_dem(
     speed_m_per_s: f64,
     duration_s: f64,
 ) -> Result<DemDrive, PhysicsError> {
-    check(
-        "speed_m_per_s",
-        speed_m_per_s,
-        "0 < speed ≤ 1 m/s",
-        speed_m_per_s > 0.0 && speed_m_per_s <= 1.0,
-    )?;
+    check_speed(speed_m_per_s)?;
     check(
         "duration_s",
         duration_s,

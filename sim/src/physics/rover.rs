@@ -17,7 +17,7 @@ use rapier3d_f64::prelude::*;
 use localization::ekf::MARS_SURFACE_GRAVITY_M_PER_S2;
 
 use super::soil::{Contact, Soil};
-use super::{PhysicsError, check, check_experiment};
+use super::{PhysicsError, check_experiment, check_speed};
 
 /// Where the rover heads relative to the slope.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -134,12 +134,7 @@ pub fn drive_on_slope(
     duration_s: f64,
 ) -> Result<SlopeDrive, PhysicsError> {
     check_experiment(slope_deg, soil.tan_phi(), duration_s)?;
-    check(
-        "speed_m_per_s",
-        speed_m_per_s,
-        "0 < speed ≤ 1 m/s",
-        speed_m_per_s > 0.0 && speed_m_per_s <= 1.0,
-    )?;
+    check_speed(speed_m_per_s)?;
     let theta = slope_deg.to_radians();
     // The ground: a heightfield rising along +x, 40 m square, centred on the rover's start.
     let tilt = Rotation::from_rotation_z(theta);
