@@ -55,7 +55,7 @@
 //! | Data | produced at an activity's end, freed by downlinks (comm passes) | downlink at the pass's end, not during it |
 //! | Mandatory | tasks every plan must hold (comm passes at fixed times) | — |
 //! | Auxiliary | preconditions (heating before a drive) | no maximum gap between heating and use |
-//! | Drives | pre-split into `k` equal segments (or at given distances) run in order; utility per metre | split points fixed before search |
+//! | Drives | pre-split into `k` equal segments (or at given distances) run in order; the drive's utility shared among the segments by length, so a plan earns it in proportion to the metres driven | split points fixed before search |
 //! | Goal set | utility by count with `min_count`, `max_count`, decay | utility does not depend on which members |
 //! | Periodic | instances at absolute due times ± tolerance | cadence not relative to the previous instance |
 //! | State-based | instances allowed only while metres driven ∈ `k·every ± tolerance` | — |

@@ -84,8 +84,8 @@ pub struct Activity {
     #[serde(default = "default_tier")]
     pub tier: u8,
     /// Utility points earned when the activity is in the plan (0 ..=
-    /// [`MAX_UTILITY`](crate::MAX_UTILITY)); a drive earns it in proportion to the metres
-    /// driven. Campaign members usually leave it at 0 and let the campaign score them.
+    /// [`MAX_UTILITY`](crate::MAX_UTILITY)); for a drive, what the whole drive earns, a plan
+    /// that drives part of it earning that fraction (its metres over the drive's length). Campaign members usually leave it at 0 and let the campaign score them.
     /// (default: 0)
     #[serde(default)]
     pub utility: f64,
@@ -189,7 +189,8 @@ const DURATION_ROUNDING_S: f64 = 1e-6;
 ///
 /// The split is fixed before the search: `k = clamp(floor(duration / min_segment_s), 1,
 /// max_segments)` equal segments, or the explicit `split_at_m` boundaries when given. A plan
-/// may drive only a prefix of the segments; utility accrues per metre.
+/// may drive only a prefix of the segments. The activity's `utility` is the whole drive's; each
+/// segment carries its share by length, so a prefix earns it in proportion to the metres driven.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Drive {
