@@ -23,7 +23,7 @@ use crate::errors::{ErrorModel, SolErrors};
 use crate::outcome::{Fault, FaultKind};
 use crate::planning_grid::PlanningGrid;
 use crate::pose::{EstimatedPose, TruePose};
-use crate::slip_profile::SlipTable;
+use crate::slip_profile::{SlipTable, along_across};
 use crate::uncertainty::{UncertaintyModel, UncertaintyState};
 use maps::TerrainClass;
 
@@ -516,12 +516,6 @@ fn slope_components(grid: &PlanningGrid, at: Vector2<f64>, heading: Vector2<f64>
         return (0.0, 0.0);
     }
     along_across(g, (heading.x / n) as f32, (heading.y / n) as f32)
-}
-
-/// The tangents of the slope of gradient `g` along the unit direction (`ux`, `uy`) (positive
-/// uphill) and across it.
-fn along_across(g: [f32; 2], ux: f32, uy: f32) -> (f32, f32) {
-    (g[0] * ux + g[1] * uy, (g[0] * uy - g[1] * ux).abs())
 }
 
 /// Plan from cell `here` to route waypoint `waypoint` at uncertainty `r_m`.

@@ -448,6 +448,14 @@ impl SlipTable {
     }
 }
 
+/// The tangents of the slope of height gradient `g` (`[∂z/∂x east, ∂z/∂y north]`) along the
+/// unit map direction (`ux`, `uy`) (positive uphill) and across it: the coordinates
+/// [`SlipTable`] is indexed by.
+#[must_use]
+pub fn along_across(g: [f32; 2], ux: f32, uy: f32) -> (f32, f32) {
+    (g[0] * ux + g[1] * uy, (g[0] * uy - g[1] * ux).abs())
+}
+
 fn class_index(class: TerrainClass) -> usize {
     match class {
         TerrainClass::Sand => 0,

@@ -13,9 +13,9 @@
 use maps::{Raster, TerrainClass};
 use rapier3d_f64::prelude::*;
 
-use super::rover::{SoilHook, assemble, insert_ground};
+use super::rover::{SoilHook, assemble, insert_ground, tilt_deg};
 use super::{PhysicsError, RoverBody, Soil, check, check_speed};
-use crate::slip_profile::SlipTable;
+use crate::slip_profile::{SlipTable, along_across};
 use localization::ekf::MARS_SURFACE_GRAVITY_M_PER_S2;
 
 /// What a drive over the DEM measured.
@@ -101,8 +101,9 @@ pub fn drive_on_dem(
         Vector::new(-g[0], 1.0, g[1]).normalize()
     };
     let class_at = |v: Vector| {
+        let [x, y] = to_map(v);
         terrain
-            .sample_nearest(to_map(v)[0], to_map(v)[1])
+            .sample_nearest(x, y)
             .and_then(TerrainClass::from_code)
             .unwrap_or(TerrainClass::Soil)
     };
@@ -138,7 +139,14 @@ pub fn drive_on_dem(
     let weight_n = body.mass_kg() * MARS_SURFACE_GRAVITY_M_PER_S2 / 6.0;
     let contact_of =
         |soil: &Soil, normal: Vector| soil.contact(weight_n * normal.y, r, body.wheel_width_m);
-    let mut hooks = SoilHook::new(ground, &rover, r, Soil::SOIL, contact_of(&Soil::SOIL, up));
+    let mut hooks = SoilHook::new(
+        &world,
+        ground,
+        &rover,
+        r,
+        Soil::SOIL,
+        contact_of(&Soil::SOIL, up),
+    );
     let table = SlipTable::bundled();
     let dt = world.integration_parameters.dt;
     let steps = (duration_s / dt).round() as usize;
@@ -155,19 +163,12 @@ pub fn drive_on_dem(
         let fwd = chassis.rotation() * Vector::X;
         if step >= settle {
             let m = to_map(before);
-            let g = slope_at(m);
-            let level = Vector::new(fwd.x, 0.0, fwd.z);
-            let u = level.normalize_or_zero();
+            let g = slope_at(m).map(|v| v as f32);
+            let u = Vector::new(fwd.x, 0.0, fwd.z).normalize_or_zero();
             // The heading on the map: x east, y north = −z.
-            let (ux, uy) = (u.x, -u.z);
-            let along = g[0] * ux + g[1] * uy;
-            let across = (g[0] * uy - g[1] * ux).abs();
-            predicted += f64::from(table.slip(class_at(before), along as f32, across as f32));
-            tilt += (chassis.rotation() * Vector::Y)
-                .dot(Vector::Y)
-                .clamp(-1.0, 1.0)
-                .acos()
-                .to_degrees();
+            let (along, across) = along_across(g, u.x as f32, -u.z as f32);
+            predicted += f64::from(table.slip(class_at(before), along, across));
+            tilt += tilt_deg(*chassis.rotation());
         }
         hooks.before_step(&mut world, &rover, speed_m_per_s, normal_at);
         world.step_with_events(&hooks, &());

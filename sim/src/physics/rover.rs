@@ -159,7 +159,7 @@ pub fn drive_on_slope(
     let chassis = rover.chassis;
     let load_n = body.mass_kg() * MARS_SURFACE_GRAVITY_M_PER_S2 * theta.cos() / 6.0;
     let contact = soil.contact(load_n, r, body.wheel_width_m);
-    let mut hooks = SoilHook::new(ground, &rover, r, *soil, contact);
+    let mut hooks = SoilHook::new(&world, ground, &rover, r, *soil, contact);
     let normal = tilt * Vector::Y;
     let dt = world.integration_parameters.dt;
     let steps = (duration_s / dt).round() as usize;
@@ -178,15 +178,23 @@ pub fn drive_on_slope(
     let along = pose * Vector::X;
     let progress_m = (end - from).dot(along);
     let commanded_m = speed_m_per_s * measured_s;
-    let up = world.bodies[chassis].rotation() * Vector::Y;
     Ok(SlopeDrive {
         progress_m,
         commanded_m,
         slip: 1.0 - progress_m / commanded_m,
         drift_left_m: (end - start).dot(pose * Vector::Z),
-        tilt_deg: up.dot(Vector::Y).clamp(-1.0, 1.0).acos().to_degrees(),
+        tilt_deg: tilt_deg(*world.bodies[chassis].rotation()),
         sinkage_m: contact.sinkage_m,
     })
+}
+
+/// The angle between a body's up axis under `rotation` and the vertical, degrees.
+pub(super) fn tilt_deg(rotation: Rotation) -> f64 {
+    (rotation * Vector::Y)
+        .dot(Vector::Y)
+        .clamp(-1.0, 1.0)
+        .acos()
+        .to_degrees()
 }
 
 /// The ground collider: a heightfield of `heights` (rows north to south, columns west to east)
@@ -282,8 +290,10 @@ pub(super) struct SoilHook {
 }
 
 impl SoilHook {
-    /// Every wheel of `rover` (wheels of `wheel_radius_m`) on `soil` with `contact`.
+    /// Every wheel of `rover` (built in `world`, wheels of `wheel_radius_m`) on `soil` with
+    /// `contact`.
     pub(super) fn new(
+        world: &PhysicsWorld,
         ground: ColliderHandle,
         rover: &Assembled,
         wheel_radius_m: f64,
@@ -293,7 +303,11 @@ impl SoilHook {
         Self {
             ground,
             wheel_radius_m,
-            wheel_colliders: Vec::new(),
+            wheel_colliders: rover
+                .wheels
+                .iter()
+                .map(|&w| world.bodies[w].colliders()[0])
+                .collect(),
             soils: vec![(soil, contact); rover.wheels.len()],
             shear_slip: vec![0.0; rover.wheels.len()],
         }
@@ -315,13 +329,6 @@ impl SoilHook {
         speed_m_per_s: f64,
         normal_at: impl Fn(Vector) -> Vector,
     ) {
-        if self.wheel_colliders.is_empty() {
-            self.wheel_colliders = rover
-                .wheels
-                .iter()
-                .map(|&w| world.bodies[w].colliders()[0])
-                .collect();
-        }
         let dt = world.integration_parameters.dt;
         let forward = world.bodies[rover.chassis].rotation() * Vector::X;
         for (k, &w) in rover.wheels.iter().enumerate() {
