@@ -77,3 +77,21 @@ fn whatif_refuses_scenarios_with_different_seeds() {
         .expect("runs");
     crate::common::assert_bad_input(&o, &["seed 16", "expected the base's seed (15)"]);
 }
+
+#[test]
+fn whatif_refuses_an_unknown_strategy() {
+    let o = solsim()
+        .current_dir(root())
+        .args([
+            "whatif",
+            "scenarios/dune-crossing.toml",
+            "scenarios/dune-crossing-slip-unaware.toml",
+            "--runs",
+            "2",
+            "--strategy",
+            "teleport",
+        ])
+        .output()
+        .expect("runs");
+    crate::common::assert_bad_input(&o, &["--strategy teleport", "expected one of"]);
+}
