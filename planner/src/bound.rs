@@ -1,9 +1,13 @@
 //! Optimistic bounds: no plan extending a partial plan is worth more than these.
 //!
-//! Both bounds start from the *candidates*: tasks not yet done that could still start inside
-//! their window and the sol, whose state-based window is still reachable and whose
-//! preconditions are done or candidates themselves. A remaining mandatory task that is not a
-//! candidate kills the node. Campaign members are valued at the campaign's
+//! Both bounds start from the *candidates*: tasks not yet done that some completion could
+//! still run. A task is out when it cannot start by its latest start even at its earliest
+//! start tightened by precedence (each precondition's earliest end), when a precondition is
+//! out, when the battery or the data store can never carry it, or when its state-based window
+//! lies beyond the metres the remaining drives can cover; ruling one task out can rule out
+//! others (its successors, the survey instances its drive was to reach), so the rules repeat
+//! to a fixed point at every node ([`candidates`](mod@candidates)). A remaining mandatory task
+//! that is not a candidate kills the node. Campaign members are valued at the campaign's
 //! [`optimistic_slope`](crate::CampaignCurve::optimistic_slope), which makes every
 //! per-member sum an over-estimate of the campaign's real (possibly non-concave) gain.
 //!
@@ -26,8 +30,8 @@
 //! ([`grains`]): with whole-point utilities a fractional bound of 40.7 points becomes 40.
 //! * [`BoundKind::Lp`]: per tier, a linear relaxation solved with clarabel: `x ∈ [0, 1]` per
 //!   optional candidate, mandatory ones fixed at 1, and rows for time and energy before every
-//!   candidate deadline, time after every release, net data, campaign caps and precedences
-//!   (`x_i ≤ x_j`). An interior-point optimum is only approximate, so the bound is not the
+//!   candidate deadline, time after every candidate's release (its earliest start), net
+//!   data, campaign caps and precedences (`x_i ≤ x_j`). An interior-point optimum is only approximate, so the bound is not the
 //!   solver's objective but a weak-duality certificate built from its multipliers `z ≥ 0`:
 //!   `u·x ≤ z·b + Σ_i max(0, u_i − (Aᵀz)_i)` for every `x ∈ [0, 1]ⁿ` with `Ax ≤ b`. It holds
 //!   for any `z ≥ 0`, so a failed or inaccurate solve can only loosen the bound, never make

@@ -8,9 +8,9 @@
 
 mod common;
 
-use common::{Sim, exhaustive};
+use common::{exhaustive, random_states};
 use planner::{
-    BoundKind, GeneratorSettings, Instance, PlanStatus, SearchSettings, State, TaskId, generate,
+    BoundKind, GeneratorSettings, Instance, PlanStatus, SearchSettings, State, generate,
     optimistic_bound, plan_from, validate_plan,
 };
 use rand::{RngExt, SeedableRng};
@@ -81,28 +81,6 @@ fn search_value_equals_exhaustive_optimum() {
     }
     // The generator must mostly produce feasible instances for this test to mean much.
     assert!(optimal >= 600, "only {optimal} feasible instances");
-}
-
-/// Random feasible prefixes of a plan, as replanning states.
-fn random_states(inst: &Instance, rng: &mut ChaCha8Rng, n: usize) -> Vec<State> {
-    let mut out = vec![State::initial(inst)];
-    for _ in 0..n {
-        let mut sim = Sim::new(inst, &State::initial(inst));
-        let depth = rng.random_range(1..=3);
-        for _ in 0..depth {
-            let next: Vec<(TaskId, i64)> = (0..inst.tasks().len() as u32)
-                .map(TaskId)
-                .filter_map(|t| sim.start_of(inst, t).map(|s| (t, s)))
-                .collect();
-            if next.is_empty() {
-                break;
-            }
-            let (t, s) = next[rng.random_range(0..next.len())];
-            sim.push(inst, t, s);
-        }
-        out.push(sim.state());
-    }
-    out
 }
 
 #[test]

@@ -55,8 +55,9 @@ mod record;
 
 pub use execution::{Disruption, SolExecution, Step};
 pub use params::SolPlanParams;
+pub(crate) use problem::note_sol_problem;
 pub use problem::{
-    ChainDurations, LOCALIZATION_CHAIN, SOL_ACTIVITIES, SolPlanRequest, planned_drive_m,
-    planning_window, sol_problem,
+    ChainDurations, LOCALIZATION_CHAIN, SOL_ACTIVITIES, SolPlanRequest, capture_sol_problems,
+    planned_drive_m, planning_window, sol_problem,
 };
 pub use record::{SolPlan, SolPlanStatus, TimelineStep};

@@ -28,7 +28,7 @@ use crate::pose::estimate_error_m;
 use crate::science::{Reach, ScienceProgress, SolContext};
 use crate::sol_plan::{
     ChainDurations, Disruption, LOCALIZATION_CHAIN, SolExecution, SolPlan, SolPlanRequest, Step,
-    planned_drive_m, planning_window,
+    note_sol_problem, planned_drive_m, planning_window, sol_problem,
 };
 use crate::time::SolSeconds;
 use localization::hbs::HbsStep;
@@ -333,6 +333,7 @@ pub(crate) fn execute_sol(
         drive_ended: false,
     };
     let mut now = window[0];
+    note_sol_problem(env.sol, || sol_problem(&c.sol_plan, &request));
     match SolExecution::new(&c.sol_plan, &request) {
         Ok(exec) if exec.next_step().is_some() => {
             now = execute_plan(env, st, &mut run, exec, now);

@@ -150,7 +150,7 @@ pub fn report_table(r: &PlanReport) -> String {
     }
     let _ = writeln!(
         s,
-        "(activities = the activities' own utility, e.g. a drive's per-metre progress)"
+        "(activities = the activities' own utility, e.g. the part of a drive's utility earned by the metres driven)"
     );
     let _ = writeln!(s, "\nstatus: {}", status_text(&r.outcome));
     let _ = write!(

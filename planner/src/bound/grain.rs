@@ -3,7 +3,7 @@
 //! the 0/1 time knapsacks.
 
 use crate::instance::Instance;
-use crate::value::{MAX_TIERS, Value, ceil_micro};
+use crate::value::{MAX_TIERS, Value, bound_micro};
 
 /// Greatest common divisor (non-negative; `gcd(0, 0) = 0`).
 pub(super) fn gcd(a: i64, b: i64) -> i64 {
@@ -24,7 +24,7 @@ pub(super) fn round_to_grain(e: i64, grain: i64) -> i64 {
 pub(super) fn to_value(base: Value, extra: &[f64; MAX_TIERS], grain: &[i64; MAX_TIERS]) -> Value {
     let mut v = base;
     for ((t, e), g) in v.tiers_micro.iter_mut().zip(extra).zip(grain) {
-        *t = t.saturating_add(round_to_grain(ceil_micro(*e), *g));
+        *t = t.saturating_add(round_to_grain(bound_micro(*e), *g));
     }
     v
 }

@@ -12,7 +12,7 @@ use super::chain::{Chain, DpScratch, MAX_DP_UNITS, chain, chain_dp, chain_fill, 
 use super::grain::{gcd, round_to_grain};
 use crate::instance::{Instance, TaskId};
 use crate::state::Cursor;
-use crate::value::{MAX_TIERS, ceil_micro};
+use crate::value::{MAX_TIERS, bound_micro};
 use std::cell::OnceCell;
 
 /// One resource of [`knapsack_bound`]: its weight per task and the chains (by index) that
@@ -32,6 +32,9 @@ pub(super) struct Scratch {
     active: Vec<(u32, u32)>,
     titems: Vec<(f64, f64, f64, u32)>,
     dp: DpScratch,
+    /// Release rows of a node whose candidates' earliest starts are later than their windows.
+    rl_row: Vec<usize>,
+    rl_keys: Vec<i64>,
 }
 
 /// λ multipliers (times a per-tier scale) of the lexicographic coupling, in trial order.
@@ -228,6 +231,8 @@ pub(super) fn knapsack_bound(
         active,
         titems,
         dp,
+        rl_row: rl_row_buf,
+        rl_keys: rl_keys_buf,
     } = scratch;
     jof.clear();
     jof.resize(tasks.len(), u32::MAX);
@@ -251,6 +256,23 @@ pub(super) fn knapsack_bound(
             active.push((ji, jq));
         }
     }
+    // Release rows: the static ones (by earliest start) unless a candidate's earliest start
+    // in this node is later (a precondition's earliest end, the drives' reach): then this
+    // node's own rows, keyed the same way.
+    let (rl_row, rl_keys): (&[usize], &[i64]) = if cand.tightened {
+        rl_row_buf.clear();
+        rl_row_buf.resize(tasks.len(), 0);
+        rl_keys_buf.clear();
+        rl_keys_buf.extend(cand.release_s.iter().map(|&r| -r));
+        rl_keys_buf.sort_unstable();
+        rl_keys_buf.dedup();
+        for (&t, &r) in cand.ids.iter().zip(&cand.release_s) {
+            rl_row_buf[t.index()] = rl_keys_buf.binary_search(&-r).unwrap_or(0);
+        }
+        (rl_row_buf, rl_keys_buf)
+    } else {
+        (&layout.rl_row, &layout.rl_keys)
+    };
     let dur = |t: TaskId| main_time_s(&tasks[t.index()]) as f64;
     let energy = |t: TaskId| tasks[t.index()].energy_wh();
     let data = |t: TaskId| tasks[t.index()].data_mb;
@@ -262,7 +284,7 @@ pub(super) fn knapsack_bound(
         0 => chain(cand, mandatory, &layout.dl_row, &layout.dl_keys, dur, |d| {
             (d - now) as f64
         }),
-        1 => chain(cand, mandatory, &layout.rl_row, &layout.rl_keys, dur, |r| {
+        1 => chain(cand, mandatory, rl_row, rl_keys, dur, |r| {
             (p.end_s - now.max(-r)) as f64
         }),
         2 => chain(
@@ -422,7 +444,7 @@ pub(super) fn knapsack_bound(
         best
     };
     // Whether tiers before k tie the incumbent exactly (so tier k decides).
-    let rounded = |x: f64, k: usize| round_to_grain(ceil_micro(x), grain[k]);
+    let rounded = |x: f64, k: usize| round_to_grain(bound_micro(x), grain[k]);
     let mut out = [0.0; MAX_TIERS];
     let mut tied = need.is_some();
     for k in 0..MAX_TIERS {

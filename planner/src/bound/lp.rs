@@ -63,7 +63,8 @@ pub(super) fn lp_rows(inst: &Instance, cur: &Cursor, cand: &Candidates) -> Optio
     };
     let deadline =
         |j: usize| (inst.task(ids[j]).latest_start_s + inst.task(ids[j]).duration_s).min(p.end_s);
-    let release = |j: usize| inst.task(ids[j]).earliest_start_s.max(t0);
+    // Each candidate's earliest start in any completion (window, timelines, preconditions).
+    let release = |j: usize| cand.release_s[j].max(t0);
     let mut deadlines: Vec<i64> = (0..ids.len()).map(deadline).collect();
     deadlines.sort_unstable();
     deadlines.dedup();

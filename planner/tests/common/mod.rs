@@ -153,3 +153,26 @@ fn dfs(inst: &Instance, sim: &Sim, best: &mut Option<(Value, Plan)>) {
         }
     }
 }
+
+/// Random feasible prefixes of a plan, as replanning states.
+pub fn random_states(inst: &Instance, rng: &mut rand_chacha::ChaCha8Rng, n: usize) -> Vec<State> {
+    use rand::RngExt;
+    let mut out = vec![State::initial(inst)];
+    for _ in 0..n {
+        let mut sim = Sim::new(inst, &State::initial(inst));
+        let depth = rng.random_range(1..=3);
+        for _ in 0..depth {
+            let next: Vec<(TaskId, i64)> = (0..inst.tasks().len() as u32)
+                .map(TaskId)
+                .filter_map(|t| sim.start_of(inst, t).map(|s| (t, s)))
+                .collect();
+            if next.is_empty() {
+                break;
+            }
+            let (t, s) = next[rng.random_range(0..next.len())];
+            sim.push(inst, t, s);
+        }
+        out.push(sim.state());
+    }
+    out
+}

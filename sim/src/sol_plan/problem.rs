@@ -2,6 +2,8 @@
 //! the post-drive imaging, the afternoon pass, the onboard localization chain and the science
 //! candidates, as a [`planner::Problem`].
 
+use std::cell::RefCell;
+
 use planner::{Activity, ActivityKind, Drive, Problem, Timeline};
 
 use super::SolPlanParams;
@@ -181,5 +183,66 @@ pub fn sol_problem(p: &SolPlanParams, req: &SolPlanRequest) -> Problem {
         initial_data_mb: 0.0,
         activities,
         campaigns: req.science.campaigns.clone(),
+    }
+}
+
+thread_local! {
+    /// The sol problems planned on this thread while a [`capture_sol_problems`] runs, with
+    /// their sol numbers (`None` otherwise, so a normal run builds and keeps nothing extra).
+    static CAPTURED: RefCell<Option<Vec<(u32, Problem)>>> = const { RefCell::new(None) };
+}
+
+/// Runs `f` and returns its result with every drive sol's planning problem built on this
+/// thread meanwhile, in order, each with its sol number: the problem [`sol_problem`] builds
+/// for the sol's first plan (the one [`SolExecution::new`](super::SolExecution::new) plans;
+/// replans after an injected goal or a disruption are not included). This is how
+/// `study/examples/dump_sol_problems.rs` hands the simulator's problems to the CP-SAT peer. A
+/// campaign runs on the calling thread, so `|| scenario.run(strategy, seed)` captures all of
+/// its sols. A nested capture takes the problems from the outer one.
+pub fn capture_sol_problems<R>(f: impl FnOnce() -> R) -> (R, Vec<(u32, Problem)>) {
+    let outer = CAPTURED.with(|c| c.borrow_mut().replace(Vec::new()));
+    let r = f();
+    let problems = CAPTURED.with(|c| std::mem::replace(&mut *c.borrow_mut(), outer));
+    (r, problems.unwrap_or_default())
+}
+
+/// Keep sol `sol`'s problem (built by `problem` only then) if a [`capture_sol_problems`] is
+/// running on this thread.
+pub(crate) fn note_sol_problem(sol: u32, problem: impl FnOnce() -> Problem) {
+    CAPTURED.with(|c| {
+        if let Some(v) = c.borrow_mut().as_mut() {
+            v.push((sol, problem()));
+        }
+    });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_a_capture_builds_and_keeps_problems() {
+        let problem = || Problem {
+            start_s: 0,
+            end_s: 100,
+            battery_capacity_wh: 1.0,
+            initial_energy_wh: 1.0,
+            recharge_w: 0.0,
+            data_capacity_mb: 1.0,
+            initial_data_mb: 0.0,
+            activities: Vec::new(),
+            campaigns: Vec::new(),
+        };
+        note_sol_problem(1, || unreachable!("built outside a capture"));
+        let (r, got) = capture_sol_problems(|| {
+            note_sol_problem(2, problem);
+            let ((), inner) = capture_sol_problems(|| note_sol_problem(3, problem));
+            assert_eq!(inner.len(), 1);
+            note_sol_problem(4, problem);
+            5
+        });
+        assert_eq!(r, 5);
+        assert_eq!(got.iter().map(|(s, _)| *s).collect::<Vec<_>>(), vec![2, 4]);
+        note_sol_problem(6, || unreachable!("built after the capture"));
     }
 }
