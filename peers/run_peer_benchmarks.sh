@@ -62,7 +62,8 @@ section_census() {
         --criterion "$BENCH_TARGET/criterion"
 }
 
-# --- planner: B6 time to proven optimum (20/40/80 activities) against OR-Tools CP-SAT ----------
+# --- planner: B6 time to proven optimum (n = 20 … 320) and the simulator's own sol problems
+# against OR-Tools CP-SAT, then anytime quality at equal budgets (1 ms … 1 s) -------------------
 section_planner() {
     local dump="$BENCH_TARGET/planner-instances"
     echo "== planner: uptime (load on this 2-core machine) =="
@@ -70,12 +71,26 @@ section_planner() {
     echo "== planner: cargo bench --bench planner (dumps the instances to $dump) =="
     SOLSIM_PLANNER_DUMP="$dump" RUSTFLAGS="-C target-cpu=native" CARGO_TARGET_DIR="$BENCH_TARGET" \
         cargo bench --bench planner
-    echo "== planner: CP-SAT (1 and 2 workers, 3 solves each) on the same JSON instances =="
-    python3 peers/planner_cpsat.py solve "$dump"/n*_seed?.json --workers 1 2 --repeat 3 \
-        --time-limit 120 --out "$dump/cpsat.json"
+    echo "== planner: CP-SAT (1 and 2 workers) on the same JSON instances: n <= 80 and the sol problems 3 solves each =="
+    python3 peers/planner_cpsat.py solve "$dump"/n{20,40,80}_seed?.json "$dump"/sol_*.json \
+        --workers 1 2 --repeat 3 --time-limit 120 --out "$dump/cpsat_small.json"
+    echo "== planner: CP-SAT on n = 160 and 320, one solve each (up to a minute apiece) =="
+    python3 peers/planner_cpsat.py solve "$dump"/n{160,320}_seed?.json \
+        --workers 1 2 --repeat 1 --time-limit 120 --out "$dump/cpsat_large.json"
+    python3 -c 'import json, sys; json.dump(sum((json.load(open(f)) for f in sys.argv[2:]), []), open(sys.argv[1], "w"), indent=1)' \
+        "$dump/cpsat.json" "$dump/cpsat_small.json" "$dump/cpsat_large.json"
     echo "== planner: table (ours / CP-SAT, < 1 = faster) =="
-    python3 peers/planner_cpsat.py report --peers "$dump/cpsat.json" \
-        --criterion "$BENCH_TARGET/criterion"
+    python3 peers/planner_b6_report.py --peers "$dump/cpsat.json" \
+        --criterion "$BENCH_TARGET/criterion" --dump "$dump"
+    echo "== planner: anytime, the planner at 1 / 10 / 100 / 1000 ms (n = 80, 160, 320; 3 runs each) =="
+    RUSTFLAGS="-C target-cpu=native" CARGO_TARGET_DIR="$BENCH_TARGET" \
+        cargo run --release -q -p planner --example anytime -- --out "$dump/anytime_planner.json"
+    echo "== planner: anytime, CP-SAT at the same budgets (1 and 2 workers, 3 runs each) =="
+    python3 peers/planner_anytime.py solve "$dump"/n{80,160,320}_seed?.json \
+        --out "$dump/anytime_cpsat.json"
+    python3 peers/planner_anytime.py report --planner "$dump/anytime_planner.json" \
+        --cpsat "$dump/anytime_cpsat.json" --known "$dump/cpsat.json" \
+        --svg docs/figures/planner_anytime.svg
     uptime
 }
 
