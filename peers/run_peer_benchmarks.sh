@@ -5,7 +5,8 @@
 # Usage: peers/run_peer_benchmarks.sh [SECTION...]     (default: all sections)
 # Sections: grid (B3 keep-out growth, B4 A*), campaign (the whole rapid-traverse compare),
 #           census (B1 exact census scores, B2 full localization),
-#           planner (B6 activity planner against OR-Tools CP-SAT),
+#           planner (B6 activity planner, n = 20–320, and the simulator's sol problems against
+#           OR-Tools CP-SAT; anytime quality at equal budgets),
 #           study (many seeds through the library, map loaded once, against the CLI per run),
 #           sweep (Monte Carlo sweeps: cargo bench --bench sweep against pyarrow and scipy, and the
 #           issue 11 targets timed end to end with peak memory),
