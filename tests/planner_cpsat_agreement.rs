@@ -127,3 +127,50 @@ fn planner_and_cp_sat_prove_the_same_optima() {
         assert_eq!(r["value_micro"][0], 0, "{}", r["file"]);
     }
 }
+
+/// The fixtures are a snapshot of what the simulator builds. Re-capture the self-reliant
+/// campaign's sol problems (the 11 of the 14 that exercise the search; the rapid traverse's 3
+/// are mandatory-only and take a minute to re-run in a debug build) under every strategy and
+/// require them to be exactly the committed files, so a change to the sol problems shows here
+/// (regenerate with `cargo run --release -p study --example dump_sol_problems -- DIR`).
+#[test]
+fn the_fixtures_are_the_sol_problems_the_simulator_builds() {
+    let dir = common::root().join("peers/planner_fixtures/sol_problems");
+    let scenario =
+        study::Scenario::load(&common::root().join("scenarios/self-reliant-campaign.toml"))
+            .expect("the bundled scenario loads");
+    let mut built = std::collections::BTreeSet::new();
+    for strategy in scenario.strategies() {
+        let (_, problems) =
+            sim::sol_plan::capture_sol_problems(|| scenario.run(strategy, scenario.seed()));
+        assert!(!problems.is_empty(), "{}: no sol planned", strategy.name());
+        for (_, problem) in problems {
+            built.insert(serde_json::to_string_pretty(&problem).expect("problem JSON"));
+        }
+    }
+    let mut fixtures = std::collections::BTreeSet::new();
+    for entry in std::fs::read_dir(&dir).expect("fixtures") {
+        let path = entry.expect("entry").path();
+        let name = path
+            .file_name()
+            .expect("name")
+            .to_string_lossy()
+            .into_owned();
+        if name.starts_with("self-reliant-campaign_") && name.ends_with(".json") {
+            fixtures.insert(std::fs::read_to_string(&path).expect("read fixture"));
+        }
+    }
+    assert_eq!(
+        fixtures.len(),
+        11,
+        "the self-reliant campaign's distinct sol problems"
+    );
+    assert!(
+        built == fixtures,
+        "the simulator's sol problems changed: {} built, {} committed, {} in common; regenerate \
+         peers/planner_fixtures/sol_problems",
+        built.len(),
+        fixtures.len(),
+        built.intersection(&fixtures).count()
+    );
+}
