@@ -3,7 +3,7 @@
 //! utilities (campaign members at the campaign's optimistic slope). Both bounds start from
 //! them.
 
-use crate::instance::{Instance, TaskId};
+use crate::instance::{Instance, Task, TaskId};
 use crate::state::{Cursor, DATA_EPS_MB, DISTANCE_EPS_M, ENERGY_EPS_WH};
 use crate::value::MAX_TIERS;
 
@@ -92,10 +92,7 @@ pub(super) fn candidates(
         let reachable = t
             .driven_window_m
             .is_none_or(|[_, hi]| cur.driven_m <= hi + DISTANCE_EPS_M);
-        ok[i] = s <= t.latest_start_s
-            && s + t.duration_s <= p.end_s
-            && reachable
-            && resources_allow(inst, cur, id);
+        ok[i] = starts_in_window(t, s, p.end_s) && reachable && resources_allow(inst, cur, id);
         any_pre |= ok[i] && !t.preconditions.is_empty();
         any_window |= ok[i]
             && t.driven_window_m
@@ -160,6 +157,12 @@ pub(super) fn candidates(
     true
 }
 
+/// Whether task `t` starting at `start_s` is inside its window and ends by `end_s`, the end
+/// of the sol.
+fn starts_in_window(t: &Task, start_s: i64, end_s: i64) -> bool {
+    start_s <= t.latest_start_s && start_s + t.duration_s <= end_s
+}
+
 /// Whether the battery and the data store could ever carry task `id` after `cur`: the energy
 /// it needs at its start (what it draws above the recharge) is at most the most the battery
 /// can hold by its latest start (powers are ≥ 0, so no task adds energy), and its own data
@@ -200,9 +203,7 @@ fn precedence_pass(inst: &Instance, topo: &[u32], cur: &Cursor, ok: &mut [bool],
             }
         }
         est[i] = s;
-        if ok[i] && (s > t.latest_start_s || s + t.duration_s > p.end_s) {
-            ok[i] = false;
-        }
+        ok[i] = ok[i] && starts_in_window(t, s, p.end_s);
     }
 }
 
@@ -260,9 +261,7 @@ fn distance_pass(
         if at > est[i] {
             est[i] = at;
             changed = true;
-            if at > t.latest_start_s || at + t.duration_s > p.end_s {
-                ok[i] = false;
-            }
+            ok[i] = starts_in_window(t, at, p.end_s);
         }
     }
     changed

@@ -81,14 +81,33 @@ pub(super) fn main_time_s(t: &crate::instance::Task) -> i64 {
 }
 
 fn rows_of(keys_per_task: &[i64]) -> (Vec<usize>, Vec<i64>) {
-    let mut keys = keys_per_task.to_vec();
+    let (mut row, mut keys) = (Vec::new(), Vec::new());
+    fill_rows(
+        keys_per_task.len(),
+        keys_per_task.iter().copied().enumerate(),
+        &mut row,
+        &mut keys,
+    );
+    (row, keys)
+}
+
+/// Chain rows from `(task, key)` pairs: `keys` the distinct keys ascending, `row[task]` the
+/// index of its key (0 for the `n` tasks not listed).
+fn fill_rows(
+    n: usize,
+    items: impl Iterator<Item = (usize, i64)> + Clone,
+    row: &mut Vec<usize>,
+    keys: &mut Vec<i64>,
+) {
+    keys.clear();
+    keys.extend(items.clone().map(|(_, k)| k));
     keys.sort_unstable();
     keys.dedup();
-    let row = keys_per_task
-        .iter()
-        .map(|k| keys.binary_search(k).unwrap_or(0))
-        .collect();
-    (row, keys)
+    row.clear();
+    row.resize(n, 0);
+    for (t, k) in items {
+        row[t] = keys.binary_search(&k).unwrap_or(0);
+    }
 }
 
 impl Layout {
@@ -260,15 +279,9 @@ pub(super) fn knapsack_bound(
     // in this node is later (a precondition's earliest end, the drives' reach): then this
     // node's own rows, keyed the same way.
     let (rl_row, rl_keys): (&[usize], &[i64]) = if cand.tightened {
-        rl_row_buf.clear();
-        rl_row_buf.resize(tasks.len(), 0);
-        rl_keys_buf.clear();
-        rl_keys_buf.extend(cand.release_s.iter().map(|&r| -r));
-        rl_keys_buf.sort_unstable();
-        rl_keys_buf.dedup();
-        for (&t, &r) in cand.ids.iter().zip(&cand.release_s) {
-            rl_row_buf[t.index()] = rl_keys_buf.binary_search(&-r).unwrap_or(0);
-        }
+        let releases = cand.ids.iter().zip(&cand.release_s);
+        let items = releases.map(|(t, &r)| (t.index(), -r));
+        fill_rows(tasks.len(), items, rl_row_buf, rl_keys_buf);
         (rl_row_buf, rl_keys_buf)
     } else {
         (&layout.rl_row, &layout.rl_keys)
