@@ -5,6 +5,9 @@
 //! - issue 16's `weak.toml` with 0, 12 and 20 tier-2 fillers (a drive that can never run),
 //! - small B6 instances (`planner::b6_problem`, n = 6–18).
 //!
+//! Each is also planned with `dive_nodes: 0` (the proof phase's time-indexed bounds from the
+//! first node), which must prove the same optimum.
+//!
 //! Wherever both prove an optimum the per-tier values must be equal, and wherever the planner
 //! proves a problem infeasible CP-SAT must too. This is the CP-SAT half of issue 16's
 //! admissibility check (the exhaustive half is `planner/tests/issue_16_propagated_bounds.rs`):
@@ -25,6 +28,21 @@ fn write_with_proof(dir: &Path, stem: &str, problem: &Problem) -> PlanStatus {
         },
     )
     .expect("valid problem");
+    // The proof phase (time-indexed bounds, best-first) from the first node proves the same.
+    let proof_only = plan(
+        problem,
+        &SearchSettings {
+            node_budget: Some(2_000_000),
+            dive_nodes: 0,
+            ..SearchSettings::default()
+        },
+    )
+    .expect("valid problem");
+    assert_eq!(
+        (proof_only.status, proof_only.value),
+        (out.status, out.value),
+        "{stem}: dive_nodes 0"
+    );
     let status = format!("{:?}", out.status);
     std::fs::write(
         dir.join(format!("{stem}.json")),

@@ -1,7 +1,7 @@
 //! Solves one B6 instance ([`planner::b6_problem`]) and prints status, value, bound, stats.
 //!
 //! `cargo run -p planner --release --example b6_solve -- n seed [node_budget] [bound: 0 knapsack,
-//! 1 lp, 2 both] [time_budget_ms]` (env `RESORT`: `resort_every`, default 64)
+//! 1 lp, 2 both] [time_budget_ms]` (env `RESORT`: `resort_every`, default the settings' default)
 
 #![allow(clippy::unwrap_used)]
 
@@ -27,7 +27,10 @@ fn main() {
             node_budget: Some(budget),
             time_budget,
             bound,
-            resort_every: std::env::var("RESORT").map_or(64, |v| v.parse().unwrap()),
+            resort_every: std::env::var("RESORT")
+                .map_or(SearchSettings::default().resort_every, |v| {
+                    v.parse().unwrap()
+                }),
             ..SearchSettings::default()
         },
     )

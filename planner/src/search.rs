@@ -5,11 +5,22 @@
 //! complete). A child is kept only if its optimistic bound (see [`BoundKind`]) beats the
 //! incumbent, the best plan found so far. Expanded nodes are also completed greedily (each of
 //! the first 256, then every 16th), and that pessimistic completion becomes the incumbent
-//! when it is better. Children are pushed
-//! best-last onto a stack, so the search dives depth-first; every
-//! [`resort_every`](SearchSettings::resort_every) expansions the whole frontier is sorted by
-//! bound, the hybrid depth-first / best-first order of the paper. Stopped by a budget, it
-//! returns the incumbent with the best bound over the frontier, an honest optimality gap.
+//! when it is better.
+//!
+//! The search runs in two phases:
+//! - **the dive** ([`dive_nodes`](SearchSettings::dive_nodes) expansions): children are
+//!   pushed best-last onto a stack, so the search dives depth-first, and every
+//!   [`resort_every`](SearchSettings::resort_every) expansions the whole frontier is sorted
+//!   by bound, the hybrid depth-first / best-first order of the paper. Incumbents come fast;
+//!   bounds are the knapsacks' alone.
+//! - **the proof**: the time-indexed bounds are tuned at the root toward the incumbent and
+//!   join every node's bound; the paths their tuning walked are tried as plans (a Lagrangian
+//!   heuristic); and the frontier is kept sorted, best-first, ties to the deeper node. On the
+//!   B6 n = 160 instances this proves in 114–475 expansions where the dive alone took
+//!   602–7 650.
+//!
+//! Stopped by a budget, it returns the incumbent with the best bound over the frontier, an
+//! honest optimality gap.
 //!
 //! A child that reaches the same set of done tasks as an earlier node, but no earlier, with
 //! no more energy and no less data, is dropped as dominated (a memo keyed by the done set
@@ -212,7 +223,20 @@ impl<'a> Search<'a> {
             });
         }
         let mut exhausted = true;
+        let mut proving = false;
         while let Some(node) = frontier.pop() {
+            if !proving && self.stats.nodes_expanded >= self.settings.dive_nodes {
+                // The dive is over: bound with the time-indexed paths too (their tuning is
+                // the cost of a few dozen nodes), try the tuning's paths as plans, and go
+                // best-first.
+                proving = true;
+                let deadline = self.settings.time_budget.map(|b| clock + b);
+                self.bounder
+                    .start_indexed(&root, self.incumbent(), deadline);
+                for order in self.bounder.take_paths() {
+                    self.follow(&root, &[], &order);
+                }
+            }
             if self.incumbent().is_some_and(|v| node.bound <= v) {
                 self.stats.nodes_pruned += 1;
                 continue;
@@ -237,16 +261,22 @@ impl<'a> Search<'a> {
             if e > 1 && (e <= GREEDY_EVERY_NODE_UNTIL || e.is_multiple_of(GREEDY_EVERY)) {
                 self.greedy(&node.cur, &node.steps);
             }
+            // A coupled time-indexed bound tunes at the first node that ties a tier: its
+            // paths too are worth trying.
+            for order in self.bounder.take_paths() {
+                self.follow(&node.cur, &node.steps, &order);
+            }
             let mut children = self.expand(&node);
             // Best child last, so the dive continues with it.
-            children.sort_by(|a, b| a.bound.cmp(&b.bound).then(b.serial.cmp(&a.serial)));
+            children.sort_by(pop_order);
             frontier.extend(children);
-            if self
-                .stats
-                .nodes_expanded
-                .is_multiple_of(self.settings.resort_every.max(1))
+            if proving
+                || self
+                    .stats
+                    .nodes_expanded
+                    .is_multiple_of(self.settings.resort_every.max(1))
             {
-                frontier.sort_by(|a, b| a.bound.cmp(&b.bound).then(b.serial.cmp(&a.serial)));
+                frontier.sort_by(pop_order);
             }
         }
         let incumbent = self.incumbent();
@@ -341,6 +371,26 @@ impl<'a> Search<'a> {
         children
     }
 
+    /// A completion of `start` that appends the tasks of `order` that can still run, each as
+    /// early as it can, then completes greedily ([`Search::greedy`]); offered as incumbents.
+    fn follow(&mut self, start: &Cursor, prefix: &[PlanStep], order: &[TaskId]) {
+        let mut cur = start.clone();
+        let mut steps = prefix.to_vec();
+        for &t in order {
+            let Some(s) = cur.earliest_start(self.inst, t) else {
+                continue;
+            };
+            cur.append(self.inst, t, s, None);
+            steps.push(PlanStep {
+                task: t,
+                start_s: s,
+                end_s: s + self.inst.task(t).duration_s,
+            });
+        }
+        self.offer(&cur, || steps.clone());
+        self.greedy(&cur, &steps);
+    }
+
     /// Pessimistic completions of `cur`: two greedy rules, each appending the best next task
     /// until none fits. The better complete one is offered as an incumbent.
     fn greedy(&mut self, start: &Cursor, prefix: &[PlanStep]) {
@@ -370,6 +420,15 @@ impl<'a> Search<'a> {
             self.offer(&cur, || steps.clone());
         }
     }
+}
+
+/// The frontier's order, the node popped next last: the higher bound; on a tie the deeper
+/// node (it is nearer a complete plan, so incumbents come sooner); then the older one.
+fn pop_order(a: &Node, b: &Node) -> std::cmp::Ordering {
+    a.bound
+        .cmp(&b.bound)
+        .then(a.steps.len().cmp(&b.steps.len()))
+        .then(b.serial.cmp(&a.serial))
 }
 
 /// Greedy preference: (mandatory first?, utility rate per tier, earlier end). Larger is

@@ -395,6 +395,7 @@ fn settings_defaults_match_their_docs() {
     assert_eq!(s.time_budget, None);
     assert_eq!(s.bound, BoundKind::Knapsack);
     assert_eq!(s.resort_every, 64);
+    assert_eq!(s.dive_nodes, 64);
     assert!(s.dominance);
     let g = GeneratorSettings::default();
     assert_eq!((g.n_optional, g.n_comm_passes, g.n_precedences), (20, 2, 3));
