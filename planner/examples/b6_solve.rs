@@ -5,7 +5,9 @@
 
 #![allow(clippy::unwrap_used)]
 
-use planner::{BoundKind, Instance, SearchSettings, State, b6_problem, plan, validate_plan};
+use planner::{
+    BoundKind, Instance, SearchSettings, State, b6_problem, optimistic_bound, plan, validate_plan,
+};
 use std::time::{Duration, Instant};
 
 fn main() {
@@ -48,4 +50,16 @@ fn main() {
         violations.len()
     );
     println!("{:?}", out.stats);
+    // The root bounds, each tier on its own (`optimistic_bound`: the knapsack kind includes
+    // the time-indexed bound, tuned without an incumbent).
+    let root = State::initial(&inst);
+    let show = |kind| match optimistic_bound(&inst, &root, kind).unwrap() {
+        Some(v) => v.to_string(),
+        None => "none (infeasible)".into(),
+    };
+    println!(
+        "root bound: knapsack {} | lp {}",
+        show(BoundKind::Knapsack),
+        show(BoundKind::Lp)
+    );
 }

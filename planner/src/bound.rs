@@ -26,16 +26,16 @@
 //!   dynamic program over the chain ([`chain_dp`](chain::chain_dp)), and evaluation stops once
 //!   the comparison is decided.
 //!
-//!
-//!   Once the search's opening dive is over ([`SearchSettings::dive_nodes`](crate::SearchSettings::dive_nodes)), the knapsack
-//!   bound of a node it does not prune is also cut by the *time-indexed* bound
-//!   ([`indexed`]): the main timeline as a longest path over time slots, each candidate
-//!   started inside its window, one at a time, with each task at most once and each
-//!   precondition priced by Lagrange multipliers tuned at the root. It sees what the
-//!   knapsacks cannot, two tasks whose windows collide (B6 n = 160 seed 3: root tier-1 bound
-//!   114 → 104, optimum 99). A tier after the first is bounded, when the tiers before tie the
-//!   incumbent, for the completions that keep them tied (the same Lagrangian coupling).
-//!   [`optimistic_bound`] includes each tier's time-indexed bound, uncoupled.
+//!   Once the search's opening dive is over
+//!   ([`SearchSettings::dive_nodes`](crate::SearchSettings::dive_nodes)), the knapsack bound
+//!   of a node it does not prune is also cut by the *time-indexed* bound ([`indexed`]): the
+//!   main timeline as a longest path over time slots, each candidate started inside its
+//!   window, one at a time, with each task at most once and each precondition priced by
+//!   Lagrange multipliers tuned at the root. It sees what the knapsacks cannot, two tasks
+//!   whose windows collide (B6 n = 160 seed 3: root tier-1 bound 114 → 102, optimum 99;
+//!   `examples/b6_solve.rs` prints it). A tier after the first is bounded, when the tiers
+//!   before tie the incumbent, for the completions that keep them tied (the same Lagrangian
+//!   coupling). [`optimistic_bound`] includes each tier's time-indexed bound, uncoupled.
 //!
 //! Every tier bound is rounded down to the tier's *grain*, the gcd of all its utilities
 //! ([`grains`]): with whole-point utilities a fractional bound of 40.7 points becomes 40.

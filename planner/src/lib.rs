@@ -99,7 +99,7 @@
 //! longest path over one-minute slots with every candidate inside its window, the
 //! "at most once" and precedence constraints priced by Lagrange multipliers tuned at the root
 //! (`bound::indexed`). Knapsacks see how much time tasks need, not whether their windows
-//! collide; on B6 n = 160 seed 3 the root bound falls from 114 to 104 points (optimum 99). The
+//! collide; on B6 n = 160 seed 3 the root bound falls from 114 to 102 points (optimum 99). The
 //! search uses it after an opening dive of [`SearchSettings::dive_nodes`] expansions, then goes
 //! best-first; [`optimistic_bound`] includes it.
 //!

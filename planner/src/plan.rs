@@ -78,7 +78,7 @@ pub struct SearchSettings {
     /// Expansions of the opening dive, which finds incumbents fast with the knapsack bounds
     /// alone; after it the search tunes the time-indexed bounds at the root, adds them to
     /// every node's bound and goes best-first, which proves faster. 0 starts best-first.
-    /// (default: 64; the B6 n = 160 proofs take 114–475 nodes)
+    /// (default: 64; the B6 n = 160 proofs take 241–475 nodes)
     pub dive_nodes: u64,
     /// Drop a partial plan when another reached the same done tasks no later, with no less
     /// energy and no more data. (default: true)
