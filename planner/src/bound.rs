@@ -75,7 +75,7 @@ use crate::state::Cursor;
 use crate::value::{MAX_TIERS, Value};
 use candidates::{Candidates, candidates, topological};
 use grain::{grains, to_value};
-use indexed::Indexed;
+use indexed::{Goal, Indexed};
 use knapsack::{Layout, Scratch, knapsack_bound};
 use lp::{lp_bound_tier, lp_rows};
 use std::cell::{Cell, RefCell};
@@ -160,7 +160,12 @@ impl<'a> Bounder<'a> {
         let mut ix = first.borrow_mut();
         let k = ix.tier();
         let target = incumbent.map(|v| (v.tiers_micro[k] - root.value.tiers_micro[k]) as f64);
-        ix.bound(self.inst, root, &cand, target, 0.0, deadline);
+        let goal = Goal {
+            target,
+            need: 0.0,
+            deadline,
+        };
+        ix.bound(self.inst, root, &cand, goal);
     }
 
     /// An optimistic value of any plan extending `cur`, or `None` when no completion that
@@ -217,7 +222,12 @@ impl<'a> Bounder<'a> {
                 let gain = |t: usize| (inc.tiers_micro[t] - cur.value.tiers_micro[t]) as f64;
                 let need = ix.coupled_to().map_or(0.0, gain);
                 let clock = Instant::now();
-                let pb = ix.bound(inst, cur, cand, Some(gain(k)), need, self.deadline.get());
+                let goal = Goal {
+                    target: Some(gain(k)),
+                    need,
+                    deadline: self.deadline.get(),
+                };
+                let pb = ix.bound(inst, cur, cand, goal);
                 stats.knapsack_time += clock.elapsed();
                 ub[k] = ub[k].min(pb.bound + pb.margin);
                 bound = to_value(cur.value, &ub, &self.grain);
@@ -316,7 +326,12 @@ pub fn optimistic_bound(
         for (k, u) in ub.iter_mut().enumerate() {
             if *u > 0.0 {
                 let mut ix = Indexed::new(instance, k, None);
-                let pb = ix.bound(instance, &cur, &cand, None, 0.0, None);
+                let goal = Goal {
+                    target: None,
+                    need: 0.0,
+                    deadline: None,
+                };
+                let pb = ix.bound(instance, &cur, &cand, goal);
                 *u = u.min(pb.bound + pb.margin);
             }
         }

@@ -388,18 +388,22 @@ impl<'a> Search<'a> {
         let mut cur = start.clone();
         let mut steps = prefix.to_vec();
         for &t in order {
-            let Some(s) = cur.earliest_start(self.inst, t) else {
-                continue;
-            };
-            cur.append(self.inst, t, s, None);
-            steps.push(PlanStep {
-                task: t,
-                start_s: s,
-                end_s: s + self.inst.task(t).duration_s,
-            });
+            if let Some(s) = cur.earliest_start(self.inst, t) {
+                self.run_task(&mut cur, &mut steps, t, s);
+            }
         }
         self.offer(&cur, || steps.clone());
         self.greedy(&cur, &steps);
+    }
+
+    /// Appends task `t` started at `start_s` to `cur` and its step to `steps`.
+    fn run_task(&self, cur: &mut Cursor, steps: &mut Vec<PlanStep>, t: TaskId, start_s: i64) {
+        cur.append(self.inst, t, start_s, None);
+        steps.push(PlanStep {
+            task: t,
+            start_s,
+            end_s: start_s + self.inst.task(t).duration_s,
+        });
     }
 
     /// Pessimistic completions of `cur`: two greedy rules, each appending the best next task
@@ -421,12 +425,7 @@ impl<'a> Search<'a> {
                     }
                 }
                 let Some((_, t, s)) = pick else { break };
-                cur.append(self.inst, t, s, None);
-                steps.push(PlanStep {
-                    task: t,
-                    start_s: s,
-                    end_s: s + self.inst.task(t).duration_s,
-                });
+                self.run_task(&mut cur, &mut steps, t, s);
             }
             self.offer(&cur, || steps.clone());
         }

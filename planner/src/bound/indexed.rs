@@ -95,6 +95,16 @@ pub(super) struct Indexed {
     paths: Vec<Vec<TaskId>>,
 }
 
+/// What a bound call aims at: `target`, the micro-points a completion must add to beat the
+/// incumbent (it steers the tuning; `None` without an incumbent); `need`, the tier-before
+/// gain a coupled bound assumes; `deadline`, when tuning must stop.
+#[derive(Clone, Copy)]
+pub(super) struct Goal {
+    pub(super) target: Option<f64>,
+    pub(super) need: f64,
+    pub(super) deadline: Option<Instant>,
+}
+
 /// What one path gives: the bound (micro-points the completion adds to tier `tier`) and a
 /// margin covering the rounding of its cancelling terms.
 pub(super) struct PathBound {
@@ -180,35 +190,29 @@ impl Indexed {
         self.coupled_to
     }
 
-    /// The bound at `cur`, tuning the multipliers first if this is the first call. `target`
-    /// (micro-points the completion must add to beat the incumbent) steers the tuning.
+    /// The bound at `cur`, tuning the multipliers first if this is the first call.
     pub(super) fn bound(
         &mut self,
         inst: &Instance,
         cur: &Cursor,
         cand: &Candidates,
-        target: Option<f64>,
-        need: f64,
-        deadline: Option<Instant>,
+        goal: Goal,
     ) -> PathBound {
         if !self.tuned {
             self.tuned = true;
-            self.tune(inst, cur, cand, target, need, deadline);
+            self.tune(inst, cur, cand, goal);
         }
-        self.path(inst, cur, cand, need, false)
+        self.path(inst, cur, cand, goal.need, false)
     }
 
     /// Subgradient steps from `λ = μ = 0` at `cur`, keeping the multipliers of the best bound
     /// (Polyak steps toward `target`, halved when the bound stalls).
-    fn tune(
-        &mut self,
-        inst: &Instance,
-        cur: &Cursor,
-        cand: &Candidates,
-        target: Option<f64>,
-        need: f64,
-        deadline: Option<Instant>,
-    ) {
+    fn tune(&mut self, inst: &Instance, cur: &Cursor, cand: &Candidates, goal: Goal) {
+        let Goal {
+            target,
+            need,
+            deadline,
+        } = goal;
         let mut best = f64::INFINITY;
         let (mut best_lambda, mut best_mu) = (self.lambda.clone(), self.mu.clone());
         let mut best_coupling = self.coupling;
