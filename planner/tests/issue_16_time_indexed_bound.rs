@@ -3,7 +3,8 @@
 //! time-indexed path sees two windows that collide. Checked here: it closes a gap neither the
 //! knapsacks nor the LP relaxation can, it stays admissible on random partial plans of small
 //! instances against the exhaustive optimum, and the proof phase that uses it (from the first
-//! node, `dive_nodes: 0`) finds the exhaustive optimum.
+//! node, `dive_nodes: 0`) finds the exhaustive optimum from the start and from partial plans.
+//! Two timelines: `timelines.rs` runs the proof phase on random link problems.
 
 #![allow(clippy::unwrap_used)]
 
@@ -126,26 +127,34 @@ fn the_bound_is_admissible_on_random_partial_plans() {
     );
 }
 
+/// From the start of the sol and from random partial plans (multipliers tuned at a node that
+/// is not the sol's start, coupled tiers tuned where they first tie).
 #[test]
 fn the_proof_phase_from_the_first_node_finds_the_exhaustive_optimum() {
-    let mut optimal = 0;
+    let mut rng = ChaCha8Rng::seed_from_u64(161);
+    let (mut optimal, mut from_partial) = (0, 0);
     for (name, inst) in small_instances() {
-        let start = State::initial(&inst);
         let settings = SearchSettings {
             node_budget: None,
             dive_nodes: 0,
             ..SearchSettings::default()
         };
-        let out = plan_from(&inst, &start, &settings).unwrap();
-        match exhaustive(&inst, &start) {
-            None => assert_eq!(out.status, PlanStatus::Infeasible, "{name}"),
-            Some((best, _)) => {
-                assert_eq!(out.status, PlanStatus::Optimal, "{name}");
-                assert_eq!(out.value, best, "{name}");
-                optimal += 1;
+        let mut states = vec![State::initial(&inst)];
+        states.extend(random_states(&inst, &mut rng, 2));
+        for (i, start) in states.iter().enumerate() {
+            let out = plan_from(&inst, start, &settings).unwrap();
+            match exhaustive(&inst, start) {
+                None => assert_eq!(out.status, PlanStatus::Infeasible, "{name} state {i}"),
+                Some((best, _)) => {
+                    assert_eq!(out.status, PlanStatus::Optimal, "{name} state {i}");
+                    assert_eq!(out.value, best, "{name} state {i}");
+                    optimal += 1;
+                    from_partial += usize::from(i > 0);
+                }
             }
         }
     }
-    eprintln!("{optimal} feasible instances");
-    assert!(optimal >= 250, "only {optimal} feasible instances");
+    eprintln!("{optimal} feasible starts, {from_partial} of them partial plans");
+    assert!(optimal >= 600, "only {optimal} feasible starts");
+    assert!(from_partial >= 300, "only {from_partial} partial plans");
 }

@@ -502,6 +502,18 @@ fn search_is_valid_and_at_least_the_reference_on_random_link_problems() {
             ..SearchSettings::default()
         };
         let out = plan_from(&inst, &start, &settings).unwrap();
+        // The proof phase from the first node (the time-indexed bounds, with link tasks free
+        // on the main timeline's path) proves the same.
+        let proof_only = SearchSettings {
+            dive_nodes: 0,
+            ..settings.clone()
+        };
+        let proof = plan_from(&inst, &start, &proof_only).unwrap();
+        assert_eq!(
+            (proof.status, proof.value),
+            (out.status, out.value),
+            "seed {seed}: dive_nodes 0"
+        );
         let reference = reference(&inst);
         if out.status == PlanStatus::Infeasible {
             assert!(reference.is_none(), "seed {seed}: reference {reference:?}");
