@@ -39,7 +39,7 @@ use crate::plan::{Plan, PlanOutcome, PlanStatus, PlanStep, SearchSettings, Searc
 use crate::problem::Problem;
 use crate::state::{Cursor, State, TaskSet};
 use crate::value::{MAX_TIERS, Value};
-use std::collections::HashMap;
+use std::collections::{BinaryHeap, HashMap};
 use std::time::Instant;
 
 /// Every expanded node is completed greedily up to this many expansions ...
@@ -208,7 +208,7 @@ impl<'a> Search<'a> {
 
     fn run(mut self, root: Cursor) -> PlanOutcome {
         let clock = Instant::now();
-        let mut frontier: Vec<Node> = Vec::new();
+        let mut frontier = Frontier::Stack(Vec::new());
         self.offer(&root, Vec::new);
         self.greedy(&root, &[]);
         if let Some(bound) = self
@@ -230,6 +230,7 @@ impl<'a> Search<'a> {
                 // the cost of a few dozen nodes), try the tuning's paths as plans, and go
                 // best-first.
                 proving = true;
+                frontier.go_best_first();
                 let deadline = self.settings.time_budget.map(|b| clock + b);
                 self.bounder
                     .start_indexed(&root, self.incumbent(), deadline);
@@ -262,22 +263,19 @@ impl<'a> Search<'a> {
             // A coupled time-indexed bound tunes at the first node that ties a tier: its
             // paths too are worth trying.
             self.follow_paths(&node.cur, &node.steps, clock);
-            let mut children = self.expand(&node);
-            // Best child last, so the dive continues with it.
-            children.sort_by(pop_order);
+            let children = self.expand(&node);
             frontier.extend(children);
-            if proving
-                || self
-                    .stats
-                    .nodes_expanded
-                    .is_multiple_of(self.settings.resort_every.max(1))
+            if self
+                .stats
+                .nodes_expanded
+                .is_multiple_of(self.settings.resort_every.max(1))
             {
-                frontier.sort_by(pop_order);
+                frontier.sort();
             }
         }
         let incumbent = self.incumbent();
         let frontier_bound = frontier
-            .iter()
+            .nodes()
             .filter(|n| incumbent.is_none_or(|v| n.bound > v))
             .map(|n| n.bound)
             .max();
@@ -428,6 +426,82 @@ impl<'a> Search<'a> {
                 self.run_task(&mut cur, &mut steps, t, s);
             }
             self.offer(&cur, || steps.clone());
+        }
+    }
+}
+
+/// The open nodes: a stack during the dive (children pushed best-last, so the search dives;
+/// sorted by [`pop_order`] every `resort_every` expansions), a heap by [`pop_order`] during
+/// the proof (best-first).
+enum Frontier {
+    Stack(Vec<Node>),
+    Heap(BinaryHeap<ByPopOrder>),
+}
+
+/// A node ordered by [`pop_order`] (a total order: serials are unique).
+struct ByPopOrder(Node);
+
+impl PartialEq for ByPopOrder {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other).is_eq()
+    }
+}
+impl Eq for ByPopOrder {}
+impl PartialOrd for ByPopOrder {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl Ord for ByPopOrder {
+    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
+        pop_order(&self.0, &other.0)
+    }
+}
+
+impl Frontier {
+    fn pop(&mut self) -> Option<Node> {
+        match self {
+            Self::Stack(v) => v.pop(),
+            Self::Heap(h) => h.pop().map(|n| n.0),
+        }
+    }
+
+    fn push(&mut self, node: Node) {
+        match self {
+            Self::Stack(v) => v.push(node),
+            Self::Heap(h) => h.push(ByPopOrder(node)),
+        }
+    }
+
+    /// Adds the children of an expanded node; on the stack the best last, so it is next.
+    fn extend(&mut self, mut children: Vec<Node>) {
+        match self {
+            Self::Stack(v) => {
+                children.sort_by(pop_order);
+                v.extend(children);
+            }
+            Self::Heap(h) => h.extend(children.into_iter().map(ByPopOrder)),
+        }
+    }
+
+    /// Sorts the stack (a heap is always in order).
+    fn sort(&mut self) {
+        if let Self::Stack(v) = self {
+            v.sort_by(pop_order);
+        }
+    }
+
+    /// From now on, always pops the first node in [`pop_order`].
+    fn go_best_first(&mut self) {
+        if let Self::Stack(v) = self {
+            *self = Self::Heap(std::mem::take(v).into_iter().map(ByPopOrder).collect());
+        }
+    }
+
+    fn nodes(&self) -> Box<dyn Iterator<Item = &Node> + '_> {
+        match self {
+            Self::Stack(v) => Box::new(v.iter()),
+            Self::Heap(h) => Box::new(h.iter().map(|n| &n.0)),
         }
     }
 }

@@ -11,6 +11,8 @@ use crate::value::MAX_TIERS;
 #[derive(Default)]
 pub(super) struct Candidates {
     pub(super) ids: Vec<TaskId>,
+    /// `pos[t]`: the index of task `t` in `ids`, `u32::MAX` when it is not a candidate.
+    pub(super) pos: Vec<u32>,
     /// `utility[k][i]`: optimistic micro-points of `ids[i]` in tier `k`.
     pub(super) utility: [Vec<f64>; MAX_TIERS],
     /// Per tier, the capped utility sum over all candidates.
@@ -62,6 +64,7 @@ pub(super) fn candidates(
     let tasks = inst.tasks();
     let Candidates {
         ids,
+        pos,
         utility,
         sum,
         release_s,
@@ -122,6 +125,11 @@ pub(super) fn candidates(
     }
     ids.clear();
     ids.extend((0..n as u32).map(TaskId).filter(|t| ok[t.index()]));
+    pos.clear();
+    pos.resize(n, u32::MAX);
+    for (j, t) in ids.iter().enumerate() {
+        pos[t.index()] = j as u32;
+    }
     release_s.clear();
     release_s.extend(ids.iter().map(|t| est[t.index()]));
     *tightened = ids

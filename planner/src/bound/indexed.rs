@@ -88,7 +88,6 @@ pub(super) struct Indexed {
     best: Vec<f64>,
     from: Vec<u32>,
     counts: Vec<f64>,
-    pos: Vec<u32>,
     /// The tasks of the last counted path, in start order (the free ones last).
     seq: Vec<TaskId>,
     /// The distinct paths the tuning walked, for the search's Lagrangian heuristic.
@@ -169,7 +168,6 @@ impl Indexed {
             best: Vec::new(),
             from: Vec::new(),
             counts: Vec::new(),
-            pos: Vec::new(),
             seq: Vec::new(),
             paths: Vec::new(),
         }
@@ -326,7 +324,6 @@ impl Indexed {
             best,
             from,
             counts,
-            pos,
             seq,
             ..
         } = self;
@@ -340,11 +337,6 @@ impl Indexed {
             }
             u - lambda[t.index()]
         }));
-        pos.clear();
-        pos.resize(tasks.len(), u32::MAX);
-        for (j, &t) in cand.ids.iter().enumerate() {
-            pos[t.index()] = j as u32;
-        }
         let mut lambda_sum = 0.0;
         let mut mandatory = 0.0;
         for &t in &cand.ids {
@@ -355,7 +347,7 @@ impl Indexed {
         }
         let mut moved = 0.0;
         for (&(i, q), &m) in pairs.iter().zip(mu.iter()) {
-            let (pi, pq) = (pos[i as usize], pos[q as usize]);
+            let (pi, pq) = (cand.pos[i as usize], cand.pos[q as usize]);
             if m > 0.0 && pi != u32::MAX && pq != u32::MAX {
                 value[pi as usize] -= m;
                 value[pq as usize] += m;

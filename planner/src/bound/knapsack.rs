@@ -22,7 +22,6 @@ type Run<'a> = (&'a dyn Fn(TaskId) -> f64, [Option<usize>; 2]);
 /// Buffers [`knapsack_bound`] reuses from node to node (no allocation per bound).
 #[derive(Default)]
 pub(super) struct Scratch {
-    jof: Vec<u32>,
     mandatory: Vec<bool>,
     items: Vec<(f64, f64, f64, u32)>,
     slack: Vec<f64>,
@@ -240,7 +239,6 @@ pub(super) fn knapsack_bound(
     let now = cur.time_s;
     let tasks = inst.tasks();
     let Scratch {
-        jof,
         mandatory,
         items,
         slack,
@@ -253,15 +251,14 @@ pub(super) fn knapsack_bound(
         rl_row: rl_row_buf,
         rl_keys: rl_keys_buf,
     } = scratch;
-    jof.clear();
-    jof.resize(tasks.len(), u32::MAX);
+    // The candidate index of each task (u32::MAX: not a candidate).
+    let jof = &cand.pos;
     mandatory.clear();
     items.clear();
     slack.clear();
     let mut downlink = 0.0;
-    for (j, &t) in cand.ids.iter().enumerate() {
+    for &t in &cand.ids {
         let x = &tasks[t.index()];
-        jof[t.index()] = j as u32;
         mandatory.push(x.mandatory);
         downlink += x.downlink_mb;
     }

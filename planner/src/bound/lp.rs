@@ -28,7 +28,10 @@ pub(super) fn lp_rows(inst: &Instance, cur: &Cursor, cand: &Candidates) -> Optio
     let p = inst.problem();
     let t0 = cur.time_s;
     let ids = &cand.ids;
-    let pos_of = |t: TaskId| ids.iter().position(|&x| x == t);
+    let pos_of = |t: TaskId| match cand.pos[t.index()] {
+        u32::MAX => None,
+        j => Some(j as usize),
+    };
     let (vars, fixed): (Vec<usize>, Vec<usize>) =
         (0..ids.len()).partition(|&j| !inst.task(ids[j]).mandatory);
     let mut var_of = vec![usize::MAX; ids.len()];
