@@ -150,12 +150,14 @@ impl Format {
     }
 }
 
-/// Refuses a FIFO, a device or a directory before it is opened (a named pipe would block the
-/// reader); a missing or unreadable file is an [`RasterError::Io`].
-fn check_regular_file(path: &Path) -> Result<(), RasterError> {
-    use crate::input_file::InputFileError;
-    match crate::input_file::regular_file_len(path) {
-        Ok(_) => Ok(()),
+/// Opens a raster through the input gate ([`crate::input_file::open_input`]): a FIFO, a device
+/// or a directory is refused on the opened descriptor (a named pipe would block the reader); a
+/// missing or unreadable file is an [`RasterError::Io`]. The decoders bound what they allocate
+/// (image limits, tag limits), so the file's size is not capped here.
+fn open_raster(path: &Path) -> Result<std::fs::File, RasterError> {
+    use crate::input_file::{Follow, InputFileError, open_input};
+    match open_input(path, u64::MAX, Follow::Yes) {
+        Ok((file, _)) => Ok(file),
         Err(InputFileError::Io { error }) => Err(RasterError::Io {
             path: path.to_path_buf(),
             source: error,

@@ -119,8 +119,7 @@ pub fn read_geotiff<T: Sample>(
 
 /// The [`MapCrs`] a GeoTIFF's GeoKeys describe, without decoding its samples.
 pub(super) fn read_crs(path: &Path) -> Result<MapCrs, RasterError> {
-    super::check_regular_file(path)?;
-    let file = File::open(path).map_err(io_error(path))?;
+    let file = super::open_raster(path)?;
     let mut limits = Limits::default();
     limits.decoding_buffer_size = MAX_TAG_BYTES;
     let mut dec = Decoder::new(BufReader::new(file))
@@ -265,8 +264,7 @@ pub(super) fn read_samples(
     accept: impl Fn(Kind) -> bool,
 ) -> Result<RawTiff, RasterError> {
     let err = tiff_error(path, true);
-    super::check_regular_file(path)?;
-    let file = File::open(path).map_err(io_error(path))?;
+    let file = super::open_raster(path)?;
     // The tiff crate bounds a tag's value by `decoding_buffer_size`: keep it small while the
     // tags are read (a 500-byte file may declare a 2 GB GDAL_NODATA string), and raise it to
     // the image limit only for `read_image`.

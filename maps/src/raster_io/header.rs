@@ -81,11 +81,7 @@ impl RasterHeader {
 /// [`RasterError::Decode`] for a header that cannot be read.
 pub fn read_header(path: &Path) -> Result<RasterHeader, RasterError> {
     let format = Format::of(path)?;
-    super::check_regular_file(path)?;
-    let file = File::open(path).map_err(|source| RasterError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let file = super::open_raster(path)?;
     let decode = |detail: String| RasterError::Decode {
         path: path.to_path_buf(),
         detail,

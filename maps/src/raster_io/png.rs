@@ -54,8 +54,7 @@ pub(super) fn read_png_any<T: Sample>(
         });
     }
     check_geo(path, &geo)?;
-    super::check_regular_file(path)?;
-    let file = File::open(path).map_err(io_error(path))?;
+    let file = super::open_raster(path)?;
     let decoder = PngDecoder::with_limits(BufReader::new(file), image::Limits::default())
         .map_err(decode_error(path))?;
     let (w, h) = decoder.dimensions();
