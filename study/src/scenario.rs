@@ -1303,14 +1303,15 @@ impl Scenario {
             ("map.zones", &m.zones),
         ] {
             // Read already (and within the budget) to build the layers and zones.
-            let bytes = std::fs::read(p).map_err(|e| {
-                ScenarioError::field(
-                    path,
-                    field,
-                    "a readable file",
-                    format!("{} ({e})", p.display()),
-                )
-            })?;
+            let bytes = maps::input_file::read_input(p, u64::MAX, maps::input_file::Follow::Yes)
+                .map_err(|e| {
+                    ScenarioError::field(
+                        path,
+                        field,
+                        "a readable file",
+                        format!("{} ({e})", p.display()),
+                    )
+                })?;
             inputs_sha256.push((field, p.clone(), crate::input::sha256_hex(&bytes)));
         }
         let mut localizer = match spec.localizer {

@@ -44,7 +44,7 @@ use super::geokeys::{
     PROJ_LINEAR_UNITS, RASTER_PIXEL_IS_POINT, read_geokeys,
 };
 use super::sealed::{Samples, SamplesRef};
-use super::{RasterError, Sample, check_geo, check_shape, io_error, read_io_error, write_atomic};
+use super::{RasterError, Sample, check_geo, check_shape, read_io_error, write_atomic};
 use crate::mars_crs::MapCrs;
 use crate::raster::{GeoTransform, Raster};
 

@@ -1,6 +1,5 @@
 //! A raster's size from its header alone, so a budget can be checked before decoding.
 
-use std::fs::File;
 use std::io::BufReader;
 use std::path::Path;
 

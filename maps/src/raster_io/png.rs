@@ -1,6 +1,5 @@
 //! PNG: 8-bit and 16-bit single-channel gray, without georeference.
 
-use std::fs::File;
 use std::io::BufReader;
 use std::path::Path;
 
@@ -9,8 +8,7 @@ use image::{ColorType, ExtendedColorType, ImageDecoder, ImageEncoder, ImageError
 
 use super::sealed::{Samples, SamplesRef};
 use super::{
-    PngSample, RasterError, Sample, check_geo, check_shape, ext_of, io_error, read_io_error,
-    write_atomic,
+    PngSample, RasterError, Sample, check_geo, check_shape, ext_of, read_io_error, write_atomic,
 };
 use crate::raster::{GeoTransform, Raster};
 
