@@ -25,10 +25,11 @@ use sim::Strategy;
 use study::Scenario;
 
 use crate::error::SweepError;
+use crate::lock::{DirLock, LockKind};
 use crate::manifest::{
     ChunkEntry, MANIFEST, Manifest, ScenarioId, SegmentInfo, ShardInfo, State, sha256_file,
 };
-use crate::parquet_io::{TableWriter, read_table, tmp_path, write_durably};
+use crate::parquet_io::{TableWriter, table_batches, tmp_path, write_durably};
 use crate::rows::{self, RunRow, Segment, SolRow};
 use crate::summary::{self, Statistics};
 
@@ -370,6 +371,17 @@ pub fn summary_in_memory(
     summarise(&rows, &spec.manifest(scenario, segment_of(scenario)))
 }
 
+/// Largest `summary.json` read back, bytes (its statistics are a few kilobytes).
+const MAX_SUMMARY_BYTES: u64 = 16 << 20;
+
+fn io_gate(path: &Path, e: maps::input_file::InputFileError) -> SweepError {
+    SweepError::Io {
+        path: path.to_path_buf(),
+        what: "cannot read".into(),
+        message: e.to_string(),
+    }
+}
+
 fn chunk_name(kind: &str, first: u64, end: u64) -> String {
     format!("{kind}-{first:010}-{end:010}.parquet")
 }
@@ -410,7 +422,7 @@ fn metadata(manifest: &Manifest) -> Vec<(String, String)> {
 /// Prepares `dir` for the sweep: a new or empty directory gets a fresh manifest; a directory
 /// holding this sweep resumes it (with `resume`), after removing what a kill left half-made.
 /// Returns the manifest to continue from.
-fn prepare(dir: &Path, fresh: Manifest, resume: bool) -> Result<Manifest, SweepError> {
+fn prepare(dir: &Path, fresh: Manifest, resume: bool) -> Result<(Manifest, DirLock), SweepError> {
     if dir.exists() && !dir.is_dir() {
         return Err(SweepError::option(
             "--out",
@@ -419,6 +431,12 @@ fn prepare(dir: &Path, fresh: Manifest, resume: bool) -> Result<Manifest, SweepE
         ));
     }
     std::fs::create_dir_all(dir).map_err(|e| io(dir, "cannot create the directory", e))?;
+    let lock = DirLock::take(dir, LockKind::Exclusive, "--out")?;
+    prepare_locked(dir, fresh, resume).map(|m| (m, lock))
+}
+
+/// [`prepare`], with `dir` locked.
+fn prepare_locked(dir: &Path, fresh: Manifest, resume: bool) -> Result<Manifest, SweepError> {
     let Some(mut found) = Manifest::read(dir)? else {
         // A kill during the first manifest's write leaves only its temporary file: the
         // directory is this sweep's, with nothing in it yet.
@@ -468,31 +486,58 @@ fn prepare(dir: &Path, fresh: Manifest, resume: bool) -> Result<Manifest, SweepE
             format!("{field} {this}"),
         ));
     }
+    let chunks = dir.join("chunks");
+    // `chunks/` is this directory's own: a link (or anything but a directory) there would have
+    // the clean-up below list and remove files elsewhere.
+    match std::fs::symlink_metadata(&chunks) {
+        Ok(meta) if !meta.is_dir() => {
+            return Err(SweepError::format(
+                &chunks,
+                "(file)",
+                "the sweep's own chunks directory",
+                if meta.file_type().is_symlink() {
+                    "a symbolic link (refused: it would be cleaned up wherever it points)"
+                } else {
+                    "not a directory"
+                },
+            ));
+        }
+        Ok(_) => {}
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+        Err(e) => return Err(io(&chunks, "cannot look up", e)),
+    }
     if found.state == State::Complete {
-        let _ = std::fs::remove_dir_all(dir.join("chunks"));
+        // Nothing is rewritten; `run` checks that the files are the ones the manifest lists.
+        if chunks.exists() {
+            std::fs::remove_dir_all(&chunks).map_err(|e| io(&chunks, "cannot remove", e))?;
+        }
         return Ok(found);
     }
-    // Chunks are numbered by the chunk size they were made with; keep it.
-    if found.chunk_runs.is_none_or(|c| c == 0) {
-        return Err(SweepError::format(
-            &path,
-            "chunk_runs",
-            "a positive number while the sweep runs",
-            format!("{:?}", found.chunk_runs),
-        ));
-    }
     // What a kill may have left: temporary files, and chunk files written before the manifest
-    // that would have listed them. Listed chunks must be intact, else they are run again.
-    let chunks = dir.join("chunks");
+    // that would have listed them. A listed chunk whose files are missing or changed is run
+    // again; one whose checksums agree must also hold exactly the runs its entry names
+    // (a file renamed under an edited entry is refused, not merged in).
     std::fs::create_dir_all(&chunks).map_err(|e| io(&chunks, "cannot create", e))?;
-    found.chunks.retain(|c| {
-        [("runs", &c.runs_sha256), ("sols", &c.sols_sha256)]
+    let mut intact = Vec::with_capacity(found.chunks.len());
+    for c in std::mem::take(&mut found.chunks) {
+        let same = [("runs", &c.runs_sha256), ("sols", &c.sols_sha256)]
             .iter()
             .all(|(kind, sha)| {
                 sha256_file(&chunks.join(chunk_name(kind, c.first_run, c.end_run)))
                     .is_ok_and(|got| &got == *sha)
-            })
-    });
+            });
+        if same {
+            let runs = chunks.join(chunk_name("runs", c.first_run, c.end_run));
+            check_run_rows(
+                &runs,
+                &read_run_rows(&runs)?,
+                c.first_run..c.end_run,
+                &found.strategies,
+            )?;
+            intact.push(c);
+        }
+    }
+    found.chunks = intact;
     let keep: BTreeSet<String> = found
         .chunks
         .iter()
@@ -536,11 +581,11 @@ pub fn run(
     progress: &(dyn Fn(u64, u64) + Sync),
 ) -> Result<SweepResult, SweepError> {
     let segment = segment_of(scenario);
-    let manifest = prepare(dir, spec.manifest(scenario, segment), resume)?;
+    let (manifest, _lock) = prepare(dir, spec.manifest(scenario, segment), resume)?;
     let range = spec.run_range();
     let total = range.end - range.start;
     if manifest.state == State::Complete {
-        let summary = summarise(&read_run_rows(&dir.join("runs.parquet"))?, &manifest);
+        let summary = verify_complete(dir, &manifest)?.summary;
         return Ok(SweepResult {
             dir: dir.to_path_buf(),
             manifest,
@@ -609,14 +654,13 @@ pub fn run(
             message: "without an error (a bug)".into(),
         });
     }
-    let sources: Vec<(PathBuf, PathBuf)> = manifest
+    let sources: Vec<Source> = manifest
         .chunks
         .iter()
-        .map(|c| {
-            (
-                chunks_dir.join(chunk_name("runs", c.first_run, c.end_run)),
-                chunks_dir.join(chunk_name("sols", c.first_run, c.end_run)),
-            )
+        .map(|c| Source {
+            runs: chunks_dir.join(chunk_name("runs", c.first_run, c.end_run)),
+            sols: chunks_dir.join(chunk_name("sols", c.first_run, c.end_run)),
+            range: c.first_run..c.end_run,
         })
         .collect();
     let (manifest, summary) = assemble(dir, &sources, manifest)?;
@@ -665,12 +709,96 @@ fn commit_chunk(
 
 fn read_run_rows(path: &Path) -> Result<Vec<RunRow>, SweepError> {
     let mut rows = Vec::new();
-    for batch in read_table(path, &rows::runs_schema())? {
-        rows.extend(rows::run_rows_from(&batch).map_err(|e| {
+    for batch in table_batches(path, &rows::runs_schema())? {
+        rows.extend(rows::run_rows_from(&batch?).map_err(|e| {
             SweepError::format(path, "(rows)", "rows of a solsim runs table", e.to_string())
         })?);
     }
     Ok(rows)
+}
+
+/// Checks that the run rows read from `path` are runs `range` under `strategies`, each pair
+/// once, in run order (strategies in order within a run): what a chunk, a shard or a sweep of
+/// that range writes. Whatever its manifest says, a table that holds other runs is refused.
+fn check_run_rows(
+    path: &Path,
+    rows: &[RunRow],
+    range: Range<u64>,
+    strategies: &[String],
+) -> Result<(), SweepError> {
+    let n = strategies.len() as u64;
+    let want = (range.end - range.start).saturating_mul(n);
+    if rows.len() as u64 != want {
+        return Err(SweepError::format(
+            path,
+            "(rows)",
+            format!(
+                "{want} rows: runs {}..{} × {n} strategies",
+                range.start, range.end
+            ),
+            format!("{} rows", rows.len()),
+        ));
+    }
+    for (k, row) in rows.iter().enumerate() {
+        let k = k as u64;
+        let (run, strategy) = (range.start + k / n, &strategies[(k % n) as usize]);
+        if row.run_index != run || row.strategy.name() != strategy {
+            return Err(SweepError::format(
+                path,
+                format!("row {k}"),
+                format!("run {run} under {strategy}"),
+                format!("run {} under {}", row.run_index, row.strategy.name()),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Checks, batch by batch, that the sol rows of a table are of runs in `range` under the
+/// sweep's strategies, in (run, strategy, sol) order, each once.
+struct SolRowCheck<'a> {
+    path: &'a Path,
+    range: Range<u64>,
+    strategies: &'a [String],
+    last: Option<(u64, usize, u32)>,
+    rows: u64,
+}
+
+impl SolRowCheck<'_> {
+    fn batch(&mut self, batch: &arrow_array::RecordBatch) -> Result<(), SweepError> {
+        use arrow_array::cast::AsArray as _;
+        use arrow_array::types::{UInt32Type, UInt64Type};
+        let runs = batch.column(0).as_primitive::<UInt64Type>();
+        let names = batch.column(1).as_string::<i32>();
+        let sols = batch.column(2).as_primitive::<UInt32Type>();
+        for i in 0..batch.num_rows() {
+            let (run, name, sol) = (runs.value(i), names.value(i), sols.value(i));
+            let key = self
+                .strategies
+                .iter()
+                .position(|s| s == name)
+                .map(|s| (run, s, sol));
+            let fits = key.is_some_and(|k| {
+                self.range.contains(&run) && self.last.is_none_or(|last| k > last)
+            });
+            if !fits {
+                return Err(SweepError::format(
+                    self.path,
+                    format!("row {}", self.rows),
+                    format!(
+                        "a sol of runs {}..{} under {}, after the row before it",
+                        self.range.start,
+                        self.range.end,
+                        self.strategies.join(", ")
+                    ),
+                    maps::input_file::excerpt(&format!("run {run} under {name}, sol {sol}"), 120),
+                ));
+            }
+            self.last = key;
+            self.rows += 1;
+        }
+        Ok(())
+    }
 }
 
 fn summarise(rows: &[RunRow], manifest: &Manifest) -> Summary {
@@ -708,11 +836,37 @@ fn summary_text(summary: &Summary, dir: &Path) -> Result<String, SweepError> {
     Ok(text)
 }
 
-/// Writes `runs.parquet`, `sols.parquet`, `summary.json` and the complete manifest from the
-/// `(runs, sols)` table pairs in `sources`, given in run order.
+/// A pair of tables that holds runs `range`: a committed chunk, or a shard's output.
+struct Source {
+    runs: PathBuf,
+    sols: PathBuf,
+    range: Range<u64>,
+}
+
+/// The output files a sweep directory holds once complete.
+const OUTPUTS: [&str; 3] = ["runs.parquet", "sols.parquet", "summary.json"];
+
+/// Writes `runs.parquet`, `sols.parquet`, `summary.json` and the complete manifest from
+/// `sources`, given in run order, after checking that their rows are the runs they claim. On
+/// an error (a source that holds other runs, a full disk) no output file is left behind: the
+/// directory still says "running" and lists its chunks, and `--resume` finishes it.
 fn assemble(
     dir: &Path,
-    sources: &[(PathBuf, PathBuf)],
+    sources: &[Source],
+    manifest: Manifest,
+) -> Result<(Manifest, Summary), SweepError> {
+    assemble_outputs(dir, sources, manifest).inspect_err(|_| {
+        for name in OUTPUTS {
+            let path = dir.join(name);
+            let _ = std::fs::remove_file(tmp_path(&path));
+            let _ = std::fs::remove_file(&path);
+        }
+    })
+}
+
+fn assemble_outputs(
+    dir: &Path,
+    sources: &[Source],
     mut manifest: Manifest,
 ) -> Result<(Manifest, Summary), SweepError> {
     manifest.state = State::Complete;
@@ -724,18 +878,41 @@ fn assemble(
     let sols_out = dir.join("sols.parquet");
     let mut all_runs: Vec<RunRow> = Vec::new();
     let mut w = TableWriter::create(&runs_out, rows::runs_schema(), &kv)?;
-    for (runs, _) in sources {
-        for batch in read_table(runs, &rows::runs_schema())? {
-            all_runs.extend(rows::run_rows_from(&batch).map_err(|e| {
-                SweepError::format(runs, "(rows)", "rows of a solsim runs table", e.to_string())
+    for source in sources {
+        let mut rows = Vec::new();
+        for batch in table_batches(&source.runs, &rows::runs_schema())? {
+            let batch = batch?;
+            rows.extend(rows::run_rows_from(&batch).map_err(|e| {
+                SweepError::format(
+                    &source.runs,
+                    "(rows)",
+                    "rows of a solsim runs table",
+                    e.to_string(),
+                )
             })?);
             w.push(&batch)?;
         }
+        check_run_rows(
+            &source.runs,
+            &rows,
+            source.range.clone(),
+            &manifest.strategies,
+        )?;
+        all_runs.extend(rows);
     }
     w.finish()?;
     let mut w = TableWriter::create(&sols_out, rows::sols_schema(), &kv)?;
-    for (_, sols) in sources {
-        for batch in read_table(sols, &rows::sols_schema())? {
+    for source in sources {
+        let mut check = SolRowCheck {
+            path: &source.sols,
+            range: source.range.clone(),
+            strategies: &manifest.strategies,
+            last: None,
+            rows: 0,
+        };
+        for batch in table_batches(&source.sols, &rows::sols_schema())? {
+            let batch = batch?;
+            check.batch(&batch)?;
             w.push(&batch)?;
         }
     }
@@ -743,7 +920,7 @@ fn assemble(
     let summary = summarise(&all_runs, &manifest);
     let text = summary_text(&summary, dir)?;
     write_durably(&dir.join("summary.json"), text.as_bytes())?;
-    for name in ["runs.parquet", "sols.parquet", "summary.json"] {
+    for name in OUTPUTS {
         manifest
             .files
             .insert(name.into(), sha256_file(&dir.join(name))?);
@@ -777,9 +954,19 @@ pub struct CompletedSweep {
 /// No manifest; a sweep still running; a file missing, changed since the sweep wrote it, or
 /// not a solsim table.
 pub fn read_complete(dir: &Path) -> Result<CompletedSweep, SweepError> {
+    let _lock = DirLock::take(dir, LockKind::Shared, "DIR")?;
     let path = dir.join(MANIFEST);
     let manifest = Manifest::read(dir)?
         .ok_or_else(|| SweepError::format(&path, "(file)", "a sweep manifest", "no such file"))?;
+    verify_complete(dir, &manifest)
+}
+
+/// [`read_complete`] on a manifest already read, with `dir` locked: every listed file has its
+/// SHA-256, the run rows are the runs the manifest names, and the summary recomputed from them
+/// is the one on disk.
+fn verify_complete(dir: &Path, manifest: &Manifest) -> Result<CompletedSweep, SweepError> {
+    let path = dir.join(MANIFEST);
+    let manifest = manifest.clone();
     if manifest.state != State::Complete {
         return Err(SweepError::format(
             &path,
@@ -788,7 +975,7 @@ pub fn read_complete(dir: &Path) -> Result<CompletedSweep, SweepError> {
             "\"running\"",
         ));
     }
-    for name in ["runs.parquet", "summary.json"] {
+    for name in OUTPUTS {
         let file = dir.join(name);
         let listed = manifest.files.get(name).ok_or_else(|| {
             SweepError::format(&path, format!("files.{name}"), "its SHA-256", "nothing")
@@ -803,11 +990,23 @@ pub fn read_complete(dir: &Path) -> Result<CompletedSweep, SweepError> {
             ));
         }
     }
-    let rows = read_run_rows(&dir.join("runs.parquet"))?;
+    let runs_path = dir.join("runs.parquet");
+    let rows = read_run_rows(&runs_path)?;
+    check_run_rows(
+        &runs_path,
+        &rows,
+        manifest.run_range(),
+        &manifest.strategies,
+    )?;
     let summary = summarise(&rows, &manifest);
     let text = summary_text(&summary, dir)?;
-    let on_disk = std::fs::read(dir.join("summary.json"))
-        .map_err(|e| io(&dir.join("summary.json"), "cannot read", e))?;
+    let summary_path = dir.join("summary.json");
+    let on_disk = maps::input_file::read_input(
+        &summary_path,
+        MAX_SUMMARY_BYTES,
+        maps::input_file::Follow::No,
+    )
+    .map_err(|e| io_gate(&summary_path, e))?;
     if on_disk != text.as_bytes() {
         return Err(SweepError::format(
             dir.join("summary.json"),
@@ -845,7 +1044,9 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepResult, SweepError> {
         ));
     }
     let mut parts: Vec<(PathBuf, Manifest)> = Vec::new();
+    let mut locks = Vec::with_capacity(dirs.len() + 1);
     for d in dirs {
+        locks.push(DirLock::take(d, LockKind::Shared, "DIR")?);
         let path = d.join(MANIFEST);
         let m = Manifest::read(d)?.ok_or_else(|| {
             SweepError::format(&path, "(file)", "a sweep manifest", "no such file")
@@ -928,11 +1129,16 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepResult, SweepError> {
         }
     }
     std::fs::create_dir_all(out).map_err(|e| io(out, "cannot create the directory", e))?;
+    locks.push(DirLock::take(out, LockKind::Exclusive, "--out")?);
     let mut manifest = parts[0].1.clone();
     manifest.shard = None;
-    let sources: Vec<(PathBuf, PathBuf)> = parts
+    let sources: Vec<Source> = parts
         .iter()
-        .map(|(d, _)| (d.join("runs.parquet"), d.join("sols.parquet")))
+        .map(|(d, m)| Source {
+            runs: d.join("runs.parquet"),
+            sols: d.join("sols.parquet"),
+            range: m.run_range(),
+        })
         .collect();
     // A placeholder manifest first, so an interrupted merge leaves a directory that says what
     // it is (running) rather than loose files.

@@ -4,6 +4,7 @@
 
 pub mod engine;
 pub mod error;
+pub mod lock;
 pub mod manifest;
 pub mod parquet_io;
 pub mod rows;

@@ -110,17 +110,34 @@ pub struct Manifest {
     pub files: BTreeMap<String, String>,
 }
 
-/// SHA-256 of a file, hex.
+/// SHA-256 of a file inside a sweep directory, hex, read in blocks through the input gate
+/// ([`parquet_io::open_owned`]: a regular file, not a link, at most
+/// [`parquet_io::MAX_TABLE_BYTES`]).
 ///
 /// # Errors
-/// The file cannot be read.
+/// The file cannot be read or is refused by the gate.
 pub fn sha256_file(path: &Path) -> Result<String, SweepError> {
-    let bytes = std::fs::read(path).map_err(|e| SweepError::Io {
-        path: path.to_path_buf(),
-        what: "cannot read".into(),
-        message: e.to_string(),
-    })?;
-    Ok(study::input::sha256_hex(&bytes))
+    use sha2::Digest as _;
+    use std::io::Read as _;
+    let mut file = parquet_io::open_owned(path, parquet_io::MAX_TABLE_BYTES)?;
+    let mut hasher = sha2::Sha256::new();
+    let mut block = vec![0_u8; 1 << 16];
+    loop {
+        let n = file.read(&mut block).map_err(|e| SweepError::Io {
+            path: path.to_path_buf(),
+            what: "cannot read".into(),
+            message: e.to_string(),
+        })?;
+        if n == 0 {
+            break;
+        }
+        hasher.update(&block[..n]);
+    }
+    Ok(hasher
+        .finalize()
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect())
 }
 
 /// Manifests larger than this are not sweep manifests (a chunk entry is ~200 bytes).
@@ -132,29 +149,46 @@ impl Manifest {
     /// # Errors
     /// It exists but cannot be read or is not a sweep manifest.
     pub fn read(dir: &Path) -> Result<Option<Self>, SweepError> {
+        use maps::input_file::{Follow, InputFileError, read_input};
         let path = dir.join(MANIFEST);
-        if !path.exists() {
-            return Ok(None);
-        }
-        let text =
-            maps::input_file::read_text_file_capped(&path, MAX_MANIFEST_BYTES).map_err(|e| {
-                SweepError::Io {
-                    path: path.clone(),
+        let bytes = match read_input(&path, MAX_MANIFEST_BYTES, Follow::No) {
+            Ok(bytes) => bytes,
+            Err(InputFileError::Io { error }) if error.kind() == std::io::ErrorKind::NotFound => {
+                return Ok(None);
+            }
+            Err(e) => {
+                return Err(SweepError::Io {
+                    path,
                     what: "cannot read the sweep manifest".into(),
                     message: e.to_string(),
-                }
-            })?;
+                });
+            }
+        };
+        let text = String::from_utf8(bytes).map_err(|e| {
+            SweepError::format(
+                &path,
+                "(file)",
+                "a solsim sweep manifest (UTF-8 JSON)",
+                format!("an invalid byte at offset {}", e.utf8_error().valid_up_to()),
+            )
+        })?;
         let m: Manifest = serde_json::from_str(&text).map_err(|e| {
-            SweepError::format(&path, "(file)", "a solsim sweep manifest", e.to_string())
+            SweepError::format(
+                &path,
+                "(file)",
+                "a solsim sweep manifest",
+                maps::input_file::excerpt(&e.to_string(), 200),
+            )
         })?;
         if m.format != FORMAT {
             return Err(SweepError::format(
                 &path,
                 "format",
                 format!("{FORMAT:?}"),
-                format!("{:?}", m.format),
+                maps::input_file::excerpt(&format!("{:?}", m.format), 120),
             ));
         }
+        m.check_shape(&path)?;
         Ok(Some(m))
     }
 
@@ -172,11 +206,126 @@ impl Manifest {
         parquet_io::write_durably(&dir.join(MANIFEST), text.as_bytes())
     }
 
+    /// The run indices this manifest's directory holds: its shard's, or `0..runs`.
+    #[must_use]
+    pub fn run_range(&self) -> std::ops::Range<u64> {
+        self.shard.map_or(0..self.runs, |s| s.first_run..s.end_run)
+    }
+
+    /// Checks that the manifest is one a sweep could have written, before anything in the
+    /// directory is trusted because it lists it: a shard's range is the one its index and count
+    /// give; while running, the chunk size is positive and every listed chunk is one cell of the
+    /// grid that size lays over the run range, each listed once (so the chunks, with the ones
+    /// still to run, tile the range exactly once); once complete, it lists the three output
+    /// files and no chunks. `path` is named in the error.
+    ///
+    /// # Errors
+    /// [`SweepError::Format`] naming the first field that breaks a rule.
+    pub fn check_shape(&self, path: &Path) -> Result<(), SweepError> {
+        let bad = |field: String, expected: String, got: String| {
+            Err(SweepError::format(path, field, expected, got))
+        };
+        if let Some(s) = self.shard {
+            let want = (s.count > 0 && s.index < s.count && s.count <= self.runs).then(|| {
+                crate::engine::Shard {
+                    index: s.index,
+                    count: s.count,
+                }
+                .range(self.runs)
+            });
+            if want != Some(s.first_run..s.end_run) {
+                return bad(
+                    "shard".into(),
+                    want.map_or_else(
+                        || format!("index < count <= runs ({})", self.runs),
+                        |r| {
+                            format!(
+                                "runs {}..{} for shard {}/{}",
+                                r.start, r.end, s.index, s.count
+                            )
+                        },
+                    ),
+                    format!(
+                        "runs {}..{} for shard {}/{}",
+                        s.first_run, s.end_run, s.index, s.count
+                    ),
+                );
+            }
+        }
+        let range = self.run_range();
+        match self.state {
+            State::Running => {
+                let Some(size) = self.chunk_runs.filter(|&c| c > 0) else {
+                    return bad(
+                        "chunk_runs".into(),
+                        "a positive number while the sweep runs".into(),
+                        format!("{:?}", self.chunk_runs),
+                    );
+                };
+                if !self.files.is_empty() {
+                    return bad(
+                        "files".into(),
+                        "no output files while the sweep runs".into(),
+                        format!("{} files", self.files.len()),
+                    );
+                }
+                let mut after = None;
+                for (i, c) in self.chunks.iter().enumerate() {
+                    let on_grid = c.first_run >= range.start
+                        && c.first_run < range.end
+                        && (c.first_run - range.start) % size == 0
+                        && c.end_run == c.first_run.saturating_add(size).min(range.end);
+                    if !on_grid {
+                        return bad(
+                            format!("chunks[{i}]"),
+                            format!(
+                                "a chunk of {size} runs starting at run {} + a multiple of {size}, within runs {}..{}",
+                                range.start, range.start, range.end
+                            ),
+                            format!("runs {}..{}", c.first_run, c.end_run),
+                        );
+                    }
+                    if after.is_some_and(|a| c.first_run <= a) {
+                        return bad(
+                            format!("chunks[{i}]"),
+                            "chunks listed once each, in run order".into(),
+                            format!("runs {}..{} again or out of order", c.first_run, c.end_run),
+                        );
+                    }
+                    after = Some(c.first_run);
+                }
+            }
+            State::Complete => {
+                let names: Vec<&str> = self.files.keys().map(String::as_str).collect();
+                if names != ["runs.parquet", "sols.parquet", "summary.json"] {
+                    return bad(
+                        "files".into(),
+                        "runs.parquet, sols.parquet and summary.json once complete".into(),
+                        maps::input_file::excerpt(&names.join(", "), 120),
+                    );
+                }
+                if self.chunk_runs.is_some() || !self.chunks.is_empty() {
+                    return bad(
+                        "chunks".into(),
+                        "no chunks once complete".into(),
+                        format!("{} chunks", self.chunks.len()),
+                    );
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// The first field in which `other` describes a different sweep than `self` (ignoring the
     /// state and what was committed): `(field, self's value, other's value)`.
     #[must_use]
     pub fn differs_from(&self, other: &Manifest) -> Option<(&'static str, String, String)> {
-        let pairs: [(&'static str, String, String); 7] = [
+        let pairs: [(&'static str, String, String); 8] = [
+            (
+                "scenario.name",
+                self.scenario.name.clone(),
+                other.scenario.name.clone(),
+            ),
             (
                 "scenario.sha256",
                 self.scenario.sha256.clone(),

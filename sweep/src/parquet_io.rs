@@ -21,6 +21,25 @@ use parquet::file::properties::WriterProperties;
 
 use crate::error::SweepError;
 
+/// Largest file inside a sweep directory that solsim reads, bytes: 64 GiB. A sweep of
+/// [`crate::engine::MAX_RUNS`] runs writes run tables of about 2 GiB per strategy (measured:
+/// 27 bytes per run row, see `read_table`), its sol tables more; tables are read a batch at a
+/// time, so the cap bounds time (a sparse or runaway file), not memory.
+pub const MAX_TABLE_BYTES: u64 = 64 << 30;
+
+/// Opens a file inside a directory solsim owns (a sweep or shard directory) through the input
+/// gate ([`maps::input_file::open_input`]): a regular file of at most `limit_bytes`, checked
+/// on the opened descriptor, never a symbolic link (so nothing outside the directory is read
+/// through it), never a FIFO or device (which would block or stream forever).
+///
+/// # Errors
+/// [`SweepError::Io`] naming the file and why it was refused.
+pub fn open_owned(path: &Path, limit_bytes: u64) -> Result<File, SweepError> {
+    maps::input_file::open_input(path, limit_bytes, maps::input_file::Follow::No)
+        .map(|(file, _)| file)
+        .map_err(|e| io_err(path, "cannot read", e))
+}
+
 /// Rows per batch handed to the Parquet writer.
 pub const FEED_ROWS: usize = 8192;
 /// Rows per row group.
@@ -189,7 +208,20 @@ pub fn write_durably(path: &Path, bytes: &[u8]) -> Result<(), SweepError> {
 /// # Errors
 /// The file cannot be opened or decoded, or its columns differ from `schema`'s.
 pub fn read_table(path: &Path, schema: &SchemaRef) -> Result<Vec<RecordBatch>, SweepError> {
-    let file = File::open(path).map_err(|e| io_err(path, "cannot open", e))?;
+    table_batches(path, schema)?.collect()
+}
+
+/// The batches of a Parquet table whose columns must be those of `schema`, read one at a
+/// time (a table is never held whole). The file is opened through [`open_owned`].
+///
+/// # Errors
+/// The file cannot be opened, or its columns differ from `schema`'s; each batch, a decode
+/// error.
+pub fn table_batches(
+    path: &Path,
+    schema: &SchemaRef,
+) -> Result<impl Iterator<Item = Result<RecordBatch, SweepError>> + use<>, SweepError> {
+    let file = open_owned(path, MAX_TABLE_BYTES)?;
     let builder = ParquetRecordBatchReaderBuilder::try_new(file)
         .map_err(|e| io_err(path, "is not a readable Parquet file:", e))?;
     if builder.schema().fields() != schema.fields() {
@@ -218,7 +250,6 @@ pub fn read_table(path: &Path, schema: &SchemaRef) -> Result<Vec<RecordBatch>, S
         .with_batch_size(FEED_ROWS)
         .build()
         .map_err(|e| io_err(path, "cannot read", e))?;
-    reader
-        .map(|b| b.map_err(|e| io_err(path, "cannot decode", e)))
-        .collect()
+    let path = path.to_path_buf();
+    Ok(reader.map(move |b| b.map_err(|e| io_err(&path, "cannot decode", e))))
 }
