@@ -354,6 +354,12 @@ impl Manifest {
                 other.solsim_version.clone(),
             ),
         ];
-        pairs.into_iter().find(|(_, a, b)| a != b)
+        pairs
+            .into_iter()
+            .find(|(_, a, b)| a != b)
+            .map(|(field, a, b)| {
+                let quote = |v: String| maps::input_file::excerpt(&v, 120);
+                (field, quote(a), quote(b))
+            })
     }
 }
