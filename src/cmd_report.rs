@@ -15,6 +15,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context as _, bail};
 use clap::Args;
 use maps::MemoryBudget;
+use maps::input_file::Follow;
 use serde_json::Value;
 use sim::Strategy;
 use study::Scenario;
@@ -177,7 +178,7 @@ fn compare_dir_report(a: &ReportArgs, budget: MemoryBudget) -> anyhow::Result<(S
         if !name.ends_with(".json") || !path.is_file() {
             continue;
         }
-        let text = maps::input_file::read_text_file_capped(&path, MAX_RUN_JSON_BYTES)
+        let text = maps::input_file::read_text_input(&path, MAX_RUN_JSON_BYTES, Follow::No)
             .with_context(|| format!("{}: cannot read", path.display()))?;
         let value: Value = serde_json::from_str(&text).with_context(|| {
             format!("{}: expected a solsim run document (JSON)", path.display())
@@ -330,7 +331,7 @@ fn compare_dir_report(a: &ReportArgs, budget: MemoryBudget) -> anyhow::Result<(S
     let summary = match &over_runs {
         None => None,
         Some(path) => {
-            let text = maps::input_file::read_text_file_capped(path, MAX_RUN_JSON_BYTES)
+            let text = maps::input_file::read_text_input(path, MAX_RUN_JSON_BYTES, Follow::No)
                 .with_context(|| format!("{}: cannot read", path.display()))?;
             let value: Value = serde_json::from_str(&text).with_context(|| {
                 format!("{}: expected a compare --runs summary", path.display())

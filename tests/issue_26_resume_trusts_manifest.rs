@@ -41,13 +41,19 @@ fn resume_cli(f: &Fixture, dir: &Path, reference: &Path) -> Result<(), String> {
     let err = String::from_utf8_lossy(&o.stderr).into_owned();
     if o.status.success() {
         if let Err(e) = same_sweep(dir, reference) {
-            panic!("{}: exit 0 with a different complete set: {e}", dir.display());
+            panic!(
+                "{}: exit 0 with a different complete set: {e}",
+                dir.display()
+            );
         }
         return Ok(());
     }
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert_eq!(err.trim_end().lines().count(), 1, "one line: {err}");
-    assert!(err.starts_with("error: ") && !err.contains("panicked"), "{err}");
+    assert!(
+        err.starts_with("error: ") && !err.contains("panicked"),
+        "{err}"
+    );
     Err(err)
 }
 
@@ -72,7 +78,10 @@ fn the_reproduced_edits_are_refused() {
         err
     };
     let e = case("chunk-runs-7", &|_, m| m["chunk_runs"] = 7.into());
-    assert!(e.contains("chunks[0]") && e.contains("chunk of 7 runs"), "{e}");
+    assert!(
+        e.contains("chunks[0]") && e.contains("chunk of 7 runs"),
+        "{e}"
+    );
     let e = case("chunk-runs-50", &|_, m| m["chunk_runs"] = 50.into());
     assert!(e.contains("chunks[0]"), "{e}");
     let e = case("duplicated", &|_, m| {
@@ -341,9 +350,10 @@ fn a_thousand_manifest_edits_resume_right_or_refuse() {
         }
         std::fs::remove_dir_all(&dir).expect("clean up");
     }
-    eprintln!(
-        "{cases} manifest edits: {same} resumed to the reference bytes, {refused} refused"
-    );
+    eprintln!("{cases} manifest edits: {same} resumed to the reference bytes, {refused} refused");
     // Both outcomes must occur, or the edits test only one side.
-    assert!(same >= cases / 10 && refused >= cases / 10, "{same} / {refused}");
+    assert!(
+        same >= cases / 10 && refused >= cases / 10,
+        "{same} / {refused}"
+    );
 }

@@ -203,7 +203,19 @@ pub fn read_text_file(path: &Path) -> Result<String, InputFileError> {
 /// # Errors
 /// As [`read_file_capped`], and [`InputFileError::NotUtf8`].
 pub fn read_text_file_capped(path: &Path, limit_bytes: u64) -> Result<String, InputFileError> {
-    let bytes = read_file_capped(path, limit_bytes)?;
+    read_text_input(path, limit_bytes, Follow::Yes)
+}
+
+/// Reads a UTF-8 text file through [`open_input`].
+///
+/// # Errors
+/// As [`read_input`], and [`InputFileError::NotUtf8`].
+pub fn read_text_input(
+    path: &Path,
+    limit_bytes: u64,
+    follow: Follow,
+) -> Result<String, InputFileError> {
+    let bytes = read_input(path, limit_bytes, follow)?;
     String::from_utf8(bytes).map_err(|e| InputFileError::NotUtf8 {
         offset: e.utf8_error().valid_up_to(),
     })

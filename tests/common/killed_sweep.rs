@@ -6,7 +6,10 @@
 use std::panic::AssertUnwindSafe;
 use std::path::{Path, PathBuf};
 
-use super::root;
+use std::process::Command;
+use std::time::Duration;
+
+use super::{output_within, root, solsim};
 
 /// The scenario every fixture sweeps.
 pub const SCENARIO: &str = "scenarios/sol717-719.toml";
@@ -30,6 +33,9 @@ pub fn scratch() -> tempfile::TempDir {
         tempfile::tempdir().expect("tempdir")
     }
 }
+
+/// Generous for a command that answers in a second; a hang fails the test.
+pub const LIMIT: Duration = Duration::from_secs(30);
 
 /// What the progress callback panics with to interrupt a sweep.
 struct Interrupt;
@@ -151,4 +157,28 @@ pub fn mkfifo(path: &Path) {
     let c = std::ffi::CString::new(path.as_os_str().as_encoded_bytes()).expect("path");
     // SAFETY: a valid NUL-terminated path.
     assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o600) }, 0, "mkfifo");
+}
+
+/// Exit 2 and one `error:` line holding every string of `must`.
+pub fn refused(cmd: &mut Command, must: &[&str]) -> String {
+    let o = output_within(cmd, LIMIT);
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    for m in must {
+        assert!(err.contains(m), "stderr lacks {m:?}: {err}");
+    }
+    err
+}
+
+/// `solsim sweep --resume` of the fixture's sweep into `dir`.
+pub fn resume(f: &Fixture, dir: &Path) -> Command {
+    let mut c = solsim();
+    c.current_dir(root())
+        .args(f.cli_args())
+        .arg("--resume")
+        .arg("--out")
+        .arg(dir);
+    c
 }
