@@ -49,6 +49,7 @@ mod issue_14_sweep_half_written_manifest;
 mod issue_16_unreachable_drive_bound;
 mod issue_26_check_then_open_race;
 mod issue_26_disk_full_final_step;
+mod issue_26_fuzz_sweep_dirs;
 mod issue_26_resume_trusts_manifest;
 mod issue_26_sweep_dir_lock;
 mod issue_26_sweep_special_files;

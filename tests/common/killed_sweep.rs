@@ -40,6 +40,20 @@ pub const LIMIT: Duration = Duration::from_secs(30);
 /// What the progress callback panics with to interrupt a sweep.
 struct Interrupt;
 
+/// Keeps the panic hook from printing the interrupts (once per process; other panics print as
+/// before).
+fn quiet_interrupts() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        let before = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if !info.payload().is::<Interrupt>() {
+                before(info);
+            }
+        }));
+    });
+}
+
 impl Fixture {
     /// `runs` runs of `ground` in chunks of `chunk_runs`.
     pub fn new(runs: u64, chunk_runs: u64) -> Self {
@@ -93,6 +107,7 @@ impl Fixture {
     /// output files are assembled). One worker thread, so the committed chunks are the first.
     pub fn killed(&self, name: &str, committed: u64) -> PathBuf {
         let dir = self.tmp.path().join(name);
+        quiet_interrupts();
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(1)
             .build()
