@@ -117,7 +117,7 @@ pub fn run(a: &ReportArgs, budget: MemoryBudget, stdout: &mut dyn Write) -> anyh
     check_out(&a.dir, &a.out)?;
     OutputSet::check(&a.out)?;
     let (html, what) = if a.dir.join(sweep::manifest::MANIFEST).exists() {
-        let sweep = sweep::engine::read_complete(&a.dir)?;
+        let sweep = sweep::engine::read_complete(&a.dir, budget)?;
         let what = report_html::sweep_title(&sweep);
         (report_html::sweep_report(&sweep)?, what)
     } else {

@@ -131,10 +131,11 @@ fn hostile_sweep_directories_end_right_or_refused() {
         .ok()
         .and_then(|v| v.parse().ok())
         .unwrap_or(1000);
+    let budget = maps::MemoryBudget::new(maps::MemoryBudget::DEFAULT_BYTES);
     let mut f = Fixture::new(6, 2);
     let reference = f.complete("reference");
     let killed = f.killed("killed", 4);
-    let summary_ref = sweep::engine::read_complete(&reference)
+    let summary_ref = sweep::engine::read_complete(&reference, budget)
         .expect("reads")
         .summary;
     let summary_ref = serde_json::to_string(&summary_ref).expect("json");
@@ -194,7 +195,7 @@ fn hostile_sweep_directories_end_right_or_refused() {
                                 Ok(false)
                             }
                         },
-                        1 => match sweep::engine::read_complete(&dir) {
+                        1 => match sweep::engine::read_complete(&dir, budget) {
                             Ok(done) => {
                                 let got = serde_json::to_string(&done.summary).expect("json");
                                 if got == summary_ref {

@@ -528,12 +528,7 @@ fn prepare_locked(dir: &Path, fresh: Manifest, resume: bool) -> Result<Manifest,
             });
         if same {
             let runs = chunks.join(chunk_name("runs", c.first_run, c.end_run));
-            check_run_rows(
-                &runs,
-                &read_run_rows(&runs)?,
-                c.first_run..c.end_run,
-                &found.strategies,
-            )?;
+            read_run_rows(&runs, c.first_run..c.end_run, &found.strategies)?;
             intact.push(c);
         }
     }
@@ -707,13 +702,21 @@ fn commit_chunk(
     m.write(dir)
 }
 
-fn read_run_rows(path: &Path) -> Result<Vec<RunRow>, SweepError> {
+/// The run rows of runs `range` under `strategies` read from `path`, checked as
+/// [`check_run_rows`] does (the row count before anything is decoded).
+fn read_run_rows(
+    path: &Path,
+    range: Range<u64>,
+    strategies: &[String],
+) -> Result<Vec<RunRow>, SweepError> {
+    let want = (range.end - range.start).saturating_mul(strategies.len() as u64);
     let mut rows = Vec::new();
-    for batch in table_batches(path, &rows::runs_schema())? {
+    for batch in table_batches(path, &rows::runs_schema(), Some(want))? {
         rows.extend(rows::run_rows_from(&batch?).map_err(|e| {
             SweepError::format(path, "(rows)", "rows of a solsim runs table", e.to_string())
         })?);
     }
+    check_run_rows(path, &rows, range, strategies)?;
     Ok(rows)
 }
 
@@ -880,7 +883,9 @@ fn assemble_outputs(
     let mut w = TableWriter::create(&runs_out, rows::runs_schema(), &kv)?;
     for source in sources {
         let mut rows = Vec::new();
-        for batch in table_batches(&source.runs, &rows::runs_schema())? {
+        let want = (source.range.end - source.range.start)
+            .saturating_mul(manifest.strategies.len() as u64);
+        for batch in table_batches(&source.runs, &rows::runs_schema(), Some(want))? {
             let batch = batch?;
             rows.extend(rows::run_rows_from(&batch).map_err(|e| {
                 SweepError::format(
@@ -910,7 +915,7 @@ fn assemble_outputs(
             last: None,
             rows: 0,
         };
-        for batch in table_batches(&source.sols, &rows::sols_schema())? {
+        for batch in table_batches(&source.sols, &rows::sols_schema(), None)? {
             let batch = batch?;
             check.batch(&batch)?;
             w.push(&batch)?;
@@ -950,14 +955,34 @@ pub struct CompletedSweep {
 ///
 /// A shard directory is read as what it is, the shard's runs (see [`Manifest::shard`]).
 ///
+/// The run table is held in memory: it must fit `budget` (the manifest's runs × strategies,
+/// checked before anything is decoded; the table's row count is checked against it too).
+///
 /// # Errors
 /// No manifest; a sweep still running; a file missing, changed since the sweep wrote it, or
-/// not a solsim table.
-pub fn read_complete(dir: &Path) -> Result<CompletedSweep, SweepError> {
+/// not a solsim table; a run table over the budget; a directory being written.
+pub fn read_complete(dir: &Path, budget: maps::MemoryBudget) -> Result<CompletedSweep, SweepError> {
     let _lock = DirLock::take(dir, LockKind::Shared, "DIR")?;
     let path = dir.join(MANIFEST);
     let manifest = Manifest::read(dir)?
         .ok_or_else(|| SweepError::format(&path, "(file)", "a sweep manifest", "no such file"))?;
+    let r = manifest.run_range();
+    let table = (r.end - r.start)
+        .saturating_mul(manifest.strategies.len() as u64)
+        .saturating_mul(RUN_ROW_BYTES);
+    if !budget.allows(table) {
+        return Err(SweepError::option(
+            "--memory-budget-mib",
+            format!(
+                "room for the run table of {} ({} runs × {} strategies: {})",
+                dir.display(),
+                r.end - r.start,
+                manifest.strategies.len(),
+                maps::input_file::human_bytes(table)
+            ),
+            maps::input_file::human_bytes(budget.limit_bytes),
+        ));
+    }
     verify_complete(dir, &manifest)
 }
 
@@ -990,11 +1015,8 @@ fn verify_complete(dir: &Path, manifest: &Manifest) -> Result<CompletedSweep, Sw
             ));
         }
     }
-    let runs_path = dir.join("runs.parquet");
-    let rows = read_run_rows(&runs_path)?;
-    check_run_rows(
-        &runs_path,
-        &rows,
+    let rows = read_run_rows(
+        &dir.join("runs.parquet"),
         manifest.run_range(),
         &manifest.strategies,
     )?;

@@ -225,6 +225,34 @@ impl Manifest {
         let bad = |field: String, expected: String, got: String| {
             Err(SweepError::format(path, field, expected, got))
         };
+        if self.runs == 0 || self.runs > crate::engine::MAX_RUNS {
+            return bad(
+                "runs".into(),
+                format!("a number of runs from 1 to {}", crate::engine::MAX_RUNS),
+                self.runs.to_string(),
+            );
+        }
+        let mut seen = Vec::new();
+        for (i, name) in self.strategies.iter().enumerate() {
+            if sim::Strategy::from_name(name).is_none() || seen.contains(&name) {
+                return bad(
+                    format!("strategies[{i}]"),
+                    format!(
+                        "one of {}, each once",
+                        sim::Strategy::ALL.map(sim::Strategy::name).join(", ")
+                    ),
+                    maps::input_file::excerpt(&format!("{name:?}"), 120),
+                );
+            }
+            seen.push(name);
+        }
+        if self.strategies.is_empty() {
+            return bad(
+                "strategies".into(),
+                "at least one strategy".into(),
+                "none".into(),
+            );
+        }
         if let Some(s) = self.shard {
             let want = (s.count > 0 && s.index < s.count && s.count <= self.runs).then(|| {
                 crate::engine::Shard {

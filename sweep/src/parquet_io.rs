@@ -21,11 +21,14 @@ use parquet::file::properties::WriterProperties;
 
 use crate::error::SweepError;
 
-/// Largest file inside a sweep directory that solsim reads, bytes: 64 GiB. A sweep of
-/// [`crate::engine::MAX_RUNS`] runs writes run tables of about 2 GiB per strategy (measured:
-/// 27 bytes per run row, see `read_table`), its sol tables more; tables are read a batch at a
-/// time, so the cap bounds time (a sparse or runaway file), not memory.
-pub const MAX_TABLE_BYTES: u64 = 64 << 30;
+/// Largest file inside a sweep directory that solsim reads, bytes: 1 TiB. Measured: 43 bytes
+/// per run row and 87 per sol row (`solsim sweep scenarios/sol717-719.toml --runs 1000`, five
+/// strategies: runs.parquet 216 487 B, sols.parquet 1 307 741 B). A sweep of
+/// [`crate::engine::MAX_RUNS`] runs of a 31-sol campaign under five strategies would write some
+/// 2 GB of run rows and 135 GB of sol rows. Tables are read a batch at a time and the run table's
+/// row count is checked before it is decoded, so the cap bounds the time spent on a sparse or
+/// runaway file, not memory.
+pub const MAX_TABLE_BYTES: u64 = 1 << 40;
 
 /// Opens a file inside a directory solsim owns (a sweep or shard directory) through the input
 /// gate ([`maps::input_file::open_input`]): a regular file of at most `limit_bytes`, checked
@@ -208,18 +211,21 @@ pub fn write_durably(path: &Path, bytes: &[u8]) -> Result<(), SweepError> {
 /// # Errors
 /// The file cannot be opened or decoded, or its columns differ from `schema`'s.
 pub fn read_table(path: &Path, schema: &SchemaRef) -> Result<Vec<RecordBatch>, SweepError> {
-    table_batches(path, schema)?.collect()
+    table_batches(path, schema, None)?.collect()
 }
 
 /// The batches of a Parquet table whose columns must be those of `schema`, read one at a
-/// time (a table is never held whole). The file is opened through [`open_owned`].
+/// time (a table is never held whole). The file is opened through [`open_owned`]. With
+/// `expect_rows`, a table whose footer declares another row count is refused before a row is
+/// decoded (what a caller will hold in memory is known before it is read).
 ///
 /// # Errors
-/// The file cannot be opened, or its columns differ from `schema`'s; each batch, a decode
-/// error.
+/// The file cannot be opened, its columns differ from `schema`'s, or its row count from
+/// `expect_rows`; each batch, a decode error.
 pub fn table_batches(
     path: &Path,
     schema: &SchemaRef,
+    expect_rows: Option<u64>,
 ) -> Result<impl Iterator<Item = Result<RecordBatch, SweepError>> + use<>, SweepError> {
     let file = open_owned(path, MAX_TABLE_BYTES)?;
     let builder = ParquetRecordBatchReaderBuilder::try_new(file)
@@ -245,6 +251,17 @@ pub fn table_batches(
             ),
             got: got.join(", "),
         });
+    }
+    let rows = builder.metadata().file_metadata().num_rows();
+    if let Some(want) = expect_rows
+        && u64::try_from(rows).ok() != Some(want)
+    {
+        return Err(SweepError::format(
+            path,
+            "(rows)",
+            format!("{want} rows"),
+            format!("{rows} rows"),
+        ));
     }
     let reader = builder
         .with_batch_size(FEED_ROWS)
