@@ -18,23 +18,41 @@ fn a_path_flipped_between_a_file_and_a_fifo_never_hangs() {
     let dir = tempfile::tempdir().expect("tempdir");
     let path = dir.path().join("flip.toml");
     // A regular file that fails fast after it is read (an unknown field), and a FIFO.
-    let file = dir.path().join("file.toml");
     let fifo = dir.path().join("fifo.toml");
     let stop = AtomicBool::new(false);
     let (mut read_file, mut refused_fifo) = (0, 0);
     std::thread::scope(|s| {
         s.spawn(|| {
-            // Swap the two in under `path` as fast as renames go.
-            let mut n = 0_u64;
+            // Swap a regular file and a FIFO under `path` as fast as the kernel does it:
+            // `renameat2(RENAME_EXCHANGE)` of two entries made once.
+            std::fs::write(&path, "not_a_solsim_field = 1\n").expect("write");
+            mkfifo(&fifo);
+            let c = |p: &std::path::Path| {
+                std::ffi::CString::new(p.as_os_str().as_encoded_bytes()).expect("path")
+            };
+            let (a, b) = (c(&path), c(&fifo));
             while !stop.load(Ordering::Relaxed) {
-                std::fs::write(&file, "not_a_solsim_field = 1\n").expect("write");
-                std::fs::rename(&file, &path).expect("rename");
-                mkfifo(&fifo);
-                std::fs::rename(&fifo, &path).expect("rename");
-                n += 1;
+                // SAFETY: two valid NUL-terminated paths; nothing else is read.
+                let r = unsafe {
+                    libc::renameat2(
+                        libc::AT_FDCWD,
+                        a.as_ptr(),
+                        libc::AT_FDCWD,
+                        b.as_ptr(),
+                        libc::RENAME_EXCHANGE,
+                    )
+                };
+                assert_eq!(r, 0, "renameat2: {}", std::io::Error::last_os_error());
             }
-            assert!(n > 0);
         });
+        // Stops the flipping however this thread leaves the scope (a failed try panics).
+        struct Stop<'a>(&'a AtomicBool);
+        impl Drop for Stop<'_> {
+            fn drop(&mut self) {
+                self.0.store(true, Ordering::Relaxed);
+            }
+        }
+        let _stop = Stop(&stop);
         for _ in 0..TRIES {
             for args in [vec!["validate"], vec!["zones", "check", "--zones"]] {
                 let mut cmd = solsim();
@@ -54,7 +72,6 @@ fn a_path_flipped_between_a_file_and_a_fifo_never_hangs() {
                 }
             }
         }
-        stop.store(true, Ordering::Relaxed);
     });
     eprintln!(
         "{} tries on a flipping path: {read_file} read the file, {refused_fifo} refused the FIFO",
