@@ -171,7 +171,11 @@ pub fn read_file_capped(path: &Path, limit_bytes: u64) -> Result<Vec<u8>, InputF
 /// # Errors
 /// As [`open_input`], and [`InputFileError::TooLarge`] if the file grew past the cap while it
 /// was read.
-pub fn read_input(path: &Path, limit_bytes: u64, follow: Follow) -> Result<Vec<u8>, InputFileError> {
+pub fn read_input(
+    path: &Path,
+    limit_bytes: u64,
+    follow: Follow,
+) -> Result<Vec<u8>, InputFileError> {
     let (file, len) = open_input(path, limit_bytes, follow)?;
     let mut bytes = Vec::with_capacity(usize::try_from(len).unwrap_or(0));
     file.take(limit_bytes.saturating_add(1))
@@ -328,7 +332,10 @@ mod tests {
         std::fs::write(&file, b"abc").expect("write");
         let link = dir.path().join("link");
         std::os::unix::fs::symlink(&file, &link).expect("symlink");
-        assert_eq!(read_input(&link, 10, Follow::Yes).expect("followed"), b"abc");
+        assert_eq!(
+            read_input(&link, 10, Follow::Yes).expect("followed"),
+            b"abc"
+        );
         let e = read_input(&link, 10, Follow::No).expect_err("a link inside a sweep dir");
         assert!(e.to_string().contains("symbolic link"), "{e}");
         let fifo = dir.path().join("fifo");
@@ -336,7 +343,10 @@ mod tests {
         // SAFETY: a valid NUL-terminated path.
         assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o600) }, 0);
         let e = read_input(&fifo, 10, Follow::Yes).expect_err("a FIFO, without blocking");
-        assert_eq!(e.to_string(), "expected a regular file, got a FIFO (named pipe)");
+        assert_eq!(
+            e.to_string(),
+            "expected a regular file, got a FIFO (named pipe)"
+        );
     }
 
     #[test]
