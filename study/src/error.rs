@@ -110,7 +110,7 @@ impl ScenarioError {
             .next()
             .unwrap_or("invalid TOML")
             .trim();
-        let (text, message) = if quotes_toml_excerpt(&text[..line_start], known_keys) {
+        let (text, message) = if quotes_toml_excerpt(text, line_start, known_keys) {
             let line_text = text[line_start..].lines().next().unwrap_or("").trim();
             (
                 Some(excerpt(line_text, MAX_EXCERPT_CHARS)),
@@ -155,23 +155,29 @@ fn floor_char_boundary(text: &str, offset: usize) -> usize {
     i
 }
 
-/// Whether an error may quote a TOML file's offending line: the rule that keeps solsim from
-/// printing files that are not its own (`/etc/shadow`, `/proc/self/environ`, a `.env` file,
-/// a credentials file) when one is given by mistake or by an attacker who controls the
-/// argument but cannot read the file.
+/// Whether an error may quote a TOML file's offending line (its start at byte `line_start`):
+/// the rule that keeps solsim from printing files that are not its own (`/etc/shadow`,
+/// `/proc/self/environ`, a `.env` file, a credentials file) when one is given by mistake or by
+/// someone who controls the argument but cannot read the file.
 ///
-/// The line is quoted only if `before` — the file's text before the offending line — parses
-/// as TOML and has at least one top-level key of the expected format (`known_keys`). A file
-/// of another kind fails on its first line (nothing before it, so no key), or parses for a
-/// while but with keys of its own (`PRETTY_NAME = "…"`, `[registry]`): neither is quoted. The
-/// cost is a scenario whose error sits above its first known key: it gets the line and
-/// column without the quote. Keys rather than "not the first line": a `.env` file whose
-/// first line happens to be valid TOML must not have its second line printed.
+/// The line is quoted only if the file is TOML holding at least one top-level key of the
+/// expected format (`known_keys`) as far as it parses: the whole text when it parses (the
+/// error is about types or fields: a missing `map`, a string for a number), else the text
+/// before the offending line. A file of another kind fails on its first line (nothing before
+/// it, so no key), or parses for a while but with keys of its own (`PRETTY_NAME = "…"`,
+/// `[registry]`, `password = "…"`): none is quoted. The cost is a scenario whose syntax error
+/// sits above its first known key: it gets the line and column without the quote. Keys
+/// rather than "not the first line": a `.env` file whose first line happens to be valid TOML
+/// must not have its second line printed.
 #[must_use]
-pub fn quotes_toml_excerpt(before: &str, known_keys: &[&str]) -> bool {
-    match toml::from_str::<toml::Table>(before) {
-        Ok(table) => table.keys().any(|k| known_keys.contains(&k.as_str())),
-        Err(_) => false,
+pub fn quotes_toml_excerpt(text: &str, line_start: usize, known_keys: &[&str]) -> bool {
+    let has_known_key = |t: toml::Table| t.keys().any(|k| known_keys.contains(&k.as_str()));
+    match toml::from_str::<toml::Table>(text) {
+        Ok(table) => has_known_key(table),
+        Err(_) => text
+            .get(..line_start)
+            .and_then(|before| toml::from_str::<toml::Table>(before).ok())
+            .is_some_and(has_known_key),
     }
 }
 
@@ -322,6 +328,14 @@ mod tests {
         // A message that quotes the file is left out too.
         let e = syntax("password = \"hunter2\"\n");
         assert!(!e.contains("password") && !e.contains("hunter2"), "{e}");
+        // An error about the whole document (a missing field) in a file that is TOML with a
+        // known key: quoted.
+        assert_eq!(
+            syntax("name = \"x\"\n"),
+            "f.toml: line 1, column 1 (`name = \"x\"`): missing field `seed`"
+        );
+        // The first key misspelled, the rest of the file solsim's: quoted.
+        assert!(syntax("nmae = \"x\"\nseed = 1\n").contains("unknown field `nmae`"));
     }
 
     #[test]
