@@ -4,7 +4,8 @@
 //! printed point names as written, and zone names were accepted whatever they held.
 //!
 //! Now the loaders refuse names and `what` holding control characters (one error line naming
-//! the field, expected "text without control characters", got the escaped value), and
+//! the field, expected "text without control characters", got the escaped value) — so do
+//! campaign files for activity ids and names, which `solsim plan` printed raw too — and
 //! whatever reaches the terminal is escaped again: the error line as a whole (a path that holds
 //! ESC), the regress report and the zones table. No byte 0x1b ever reaches stdout or stderr.
 
@@ -136,4 +137,33 @@ fn an_error_quoting_a_path_with_esc_is_escaped() {
     let o = run(solsim().arg("validate").arg(&missing));
     assert_no_escape(&o);
     assert_bad_input(&o, &["no\\u{1b}]0;pwned\\u{7}\\u{1b}[2J.toml"]);
+}
+
+/// The same for a campaign file's activity ids and names, which `solsim plan` prints in its
+/// table.
+#[test]
+fn a_campaign_activity_whose_id_or_name_holds_esc_is_refused() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let text =
+        std::fs::read_to_string(common::root().join("scenarios/plans/self-reliant-campaign.toml"))
+            .expect("read");
+    for (from, to, expected) in [
+        (
+            "id = \"relay-mro-am\"",
+            "id = \"relay\\u001b]0;pwned\\u0007\"",
+            "activities[0].id: expected a non-empty id without spaces, '#' or control characters",
+        ),
+        (
+            "name = \"UHF relay pass, MRO (morning)\"",
+            "name = \"UHF \\u001b[2J relay\"",
+            "activities[0].name: expected text without control characters",
+        ),
+    ] {
+        assert!(text.contains(from), "{from}");
+        let path = dir.path().join("plan.toml");
+        std::fs::write(&path, text.replacen(from, to, 1)).expect("write");
+        let o = run(solsim().arg("plan").arg(&path));
+        assert_no_escape(&o);
+        assert_bad_input(&o, &[expected, "\\u{1b}"]);
+    }
 }
