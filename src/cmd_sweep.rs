@@ -36,6 +36,8 @@ enum SweepCommand {
     Merge(MergeArgs),
     /// Print a Slurm submit script: a job array with one shard per task, then a merge job
     /// that runs when every shard has succeeded. Run it with bash on the cluster's login node.
+    /// Paths and names written into it must be UTF-8 without control characters, and --out
+    /// without a backslash (Slurm cannot name log files in it).
     Slurm(SlurmArgs),
 }
 
@@ -345,12 +347,19 @@ impl SlurmJob<'_> {
         let _ = writeln!(s, "set -euo pipefail");
         let _ = writeln!(s, "out={outq}");
         let _ = writeln!(s, "mkdir -p \"$out/slurm\"");
+        // sbatch reads `%` in an --output path as a filename pattern (`%j`: the job id);
+        // `%%` is a literal one.
+        let _ = writeln!(
+            s,
+            "logs={}/slurm  # $out/slurm for sbatch --output",
+            sh(&self.out.replace('%', "%%"))
+        );
         let _ = writeln!(s, "{}", printf(&shard_job, "shard.sh"));
         let _ = writeln!(s, "{}", printf(&merge_job, "merge.sh"));
         let _ = writeln!(
             s,
             "array=$(sbatch --parsable --job-name=solsim-sweep --array=0-{} --cpus-per-task={}{extra} \\\n  \
-             --output=\"$out/slurm/shard-%a.log\" \"$out/slurm/shard.sh\")",
+             --output=\"$logs/shard-%a.log\" \"$out/slurm/shard.sh\")",
             m - 1,
             self.threads_per_task
         );
@@ -358,7 +367,7 @@ impl SlurmJob<'_> {
         let _ = writeln!(
             s,
             "merge=$(sbatch --parsable --job-name=solsim-merge --dependency=afterok:\"$array\"{extra} \\\n  \
-             --output=\"$out/slurm/merge.log\" \"$out/slurm/merge.sh\")"
+             --output=\"$logs/merge.log\" \"$out/slurm/merge.sh\")"
         );
         let _ = writeln!(s, "echo \"array job $array\"");
         let _ = writeln!(s, "echo \"merge job ${{merge%%;*}}\"");
@@ -428,11 +437,18 @@ fn slurm(a: &SlurmArgs, budget: MemoryBudget, stdout: &mut dyn Write) -> anyhow:
             .unwrap_or_else(|| Path::new("sweep-out").join(format!("{}-slurm", scenario.name))),
         "--out",
     )?;
+    let out = script_text("--out (made absolute)", &out)?;
+    if out.contains('\\') {
+        anyhow::bail!(
+            "--out: expected a directory without a backslash (Slurm cannot name log files in it), got \"{}\"",
+            excerpt(out, MAX_EXCERPT_CHARS)
+        );
+    }
     let job = SlurmJob {
         name: &scenario.name,
         solsim: script_text("--solsim (this solsim binary's path)", &exe)?,
         scenario: script_text("SCENARIO (resolved)", &scenario_path)?,
-        out: script_text("--out (made absolute)", &out)?,
+        out,
         spec: &spec,
         shards: a.shards,
         threads_per_task: a.threads_per_task,
