@@ -12,8 +12,10 @@ use crate::progress::Progress;
 use anyhow::Context as _;
 use clap::{Args, Subcommand};
 use maps::MemoryBudget;
+use maps::input_file::{first_unsafe_char, printable};
 use sim::Strategy;
 use study::Scenario;
+use study::error::{MAX_EXCERPT_CHARS, excerpt};
 use sweep::engine::{DEFAULT_CHUNK_RUNS, Shard, Summary, SweepResult, SweepSpec};
 use sweep::summary::{Figure, RateKind, Statistics};
 
@@ -34,6 +36,8 @@ enum SweepCommand {
     Merge(MergeArgs),
     /// Print a Slurm submit script: a job array with one shard per task, then a merge job
     /// that runs when every shard has succeeded. Run it with bash on the cluster's login node.
+    /// Paths and names written into it must be UTF-8 without control characters, and --out
+    /// without a backslash (Slurm cannot name log files in it).
     Slurm(SlurmArgs),
 }
 
@@ -237,18 +241,158 @@ fn merge(a: &MergeArgs, stdout: &mut dyn Write) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Quotes `s` for bash (single quotes).
+/// Quotes `s` for bash (single quotes): every byte inside is data, none is code.
 fn sh(s: &str) -> String {
     format!("'{}'", s.replace('\'', r"'\''"))
 }
 
+/// `path` as text that may enter the generated script: UTF-8 (a lossy conversion would run
+/// another path than the one given) without control characters (a newline would end a
+/// comment or a line of the script; an escape sequence would drive the terminal of whoever
+/// reads it). `what` names the argument in the error.
+fn script_text<'a>(what: &str, path: &'a Path) -> anyhow::Result<&'a str> {
+    let Some(text) = path.to_str() else {
+        anyhow::bail!(
+            "{what}: expected a path of UTF-8 text (it is written into the script), got {:?}, which is not",
+            printable(&path.to_string_lossy())
+        );
+    };
+    if let Some((_, c)) = first_unsafe_char(text) {
+        anyhow::bail!(
+            "{what}: expected a path without control characters (it is written into the script), got \"{}\" (holds {})",
+            excerpt(text, MAX_EXCERPT_CHARS),
+            c.escape_default()
+        );
+    }
+    Ok(text)
+}
+
 fn absolute(path: &Path, what: &str) -> anyhow::Result<PathBuf> {
-    std::path::absolute(path)
-        .with_context(|| format!("{}: cannot make {what} absolute", path.display()))
+    std::path::absolute(path).with_context(|| {
+        format!(
+            "{what}: cannot make {} absolute",
+            printable(&path.to_string_lossy())
+        )
+    })
+}
+
+/// What a Slurm submit script runs: every path absolute and checked by [`script_text`].
+struct SlurmJob<'a> {
+    /// Scenario name, for the script's opening comment.
+    name: &'a str,
+    /// The solsim binary the jobs run.
+    solsim: &'a str,
+    /// The scenario file.
+    scenario: &'a str,
+    /// The directory of the shards, the merged sweep and the logs.
+    out: &'a str,
+    spec: &'a SweepSpec,
+    shards: u64,
+    threads_per_task: u64,
+    /// `sbatch` options beside the fixed ones (`--partition=…`, `--time=…`), each already
+    /// checked to be letters, digits and `-_:.=`.
+    sbatch_extra: String,
+}
+
+impl SlurmJob<'_> {
+    /// The submit script. The two job scripts it writes are each one `printf '%s\n'` of
+    /// single-quoted lines whose values are single-quoted again: no path can end a quote, a
+    /// line or a here-document and become code.
+    fn script(&self) -> String {
+        let m = self.shards;
+        let spec = self.spec;
+        let strategies = spec
+            .strategies
+            .iter()
+            .map(|s| s.name())
+            .collect::<Vec<_>>()
+            .join(",");
+        let baseline = spec.baseline.map_or("none", Strategy::name);
+        let (solsim, scen, outq) = (sh(self.solsim), sh(self.scenario), sh(self.out));
+        let extra = &self.sbatch_extra;
+        let shard_job = [
+            "#!/usr/bin/env bash".to_string(),
+            "set -euo pipefail".to_string(),
+            format!(
+                "exec {solsim} sweep {scen} --runs {} --strategies {strategies} --seed {} --baseline {baseline} \
+                 --threads {} --shard \"$SLURM_ARRAY_TASK_ID/{m}\" --out {outq}/\"shard-$SLURM_ARRAY_TASK_ID-of-{m}\" --resume --quiet",
+                spec.runs, spec.seed, self.threads_per_task
+            ),
+        ];
+        let merge_job = [
+            "#!/usr/bin/env bash".to_string(),
+            "set -euo pipefail".to_string(),
+            format!("exec {solsim} sweep merge {outq}/shard-*-of-{m} --out {outq}/merged --quiet"),
+        ];
+        let printf = |lines: &[String], file: &str| {
+            let quoted: Vec<String> = lines.iter().map(|l| sh(l)).collect();
+            format!(
+                "printf '%s\\n' \\\n  {} \\\n  > \"$out/slurm/{file}\"",
+                quoted.join(" \\\n  ")
+            )
+        };
+        let mut s = String::new();
+        let _ = writeln!(s, "#!/usr/bin/env bash");
+        let _ = writeln!(
+            s,
+            "# solsim sweep of {} on Slurm: runs 0..{} of {strategies} (seed {}), in {m} shards —\n\
+             # one array task per shard (`solsim sweep --shard K/{m}`), then a merge job that runs\n\
+             # once every task has succeeded. Submit from a login node: bash THIS_FILE.\n\
+             # Shards write {outq}/shard-K-of-{m}, the merge {outq}/merged, Slurm logs {outq}/slurm.\n\
+             # A task that is requeued or re-run resumes its shard (--resume).",
+            sh(self.name),
+            spec.runs,
+            spec.seed,
+        );
+        let _ = writeln!(s, "set -euo pipefail");
+        let _ = writeln!(s, "out={outq}");
+        let _ = writeln!(s, "mkdir -p \"$out/slurm\"");
+        // sbatch reads `%` in an --output path as a filename pattern (`%j`: the job id);
+        // `%%` is a literal one.
+        let _ = writeln!(
+            s,
+            "logs={}/slurm  # $out/slurm for sbatch --output",
+            sh(&self.out.replace('%', "%%"))
+        );
+        let _ = writeln!(s, "{}", printf(&shard_job, "shard.sh"));
+        let _ = writeln!(s, "{}", printf(&merge_job, "merge.sh"));
+        let _ = writeln!(
+            s,
+            "array=$(sbatch --parsable --job-name=solsim-sweep --array=0-{} --cpus-per-task={}{extra} \\\n  \
+             --output=\"$logs/shard-%a.log\" \"$out/slurm/shard.sh\")",
+            m - 1,
+            self.threads_per_task
+        );
+        let _ = writeln!(s, "array=${{array%%;*}}");
+        let _ = writeln!(
+            s,
+            "merge=$(sbatch --parsable --job-name=solsim-merge --dependency=afterok:\"$array\"{extra} \\\n  \
+             --output=\"$logs/merge.log\" \"$out/slurm/merge.sh\")"
+        );
+        let _ = writeln!(s, "echo \"array job $array\"");
+        let _ = writeln!(s, "echo \"merge job ${{merge%%;*}}\"");
+        s
+    }
 }
 
 fn slurm(a: &SlurmArgs, budget: MemoryBudget, stdout: &mut dyn Write) -> anyhow::Result<()> {
+    // Refused before anything is read: what the user typed, as typed.
+    script_text("SCENARIO", &a.scenario)?;
+    if let Some(out) = &a.out {
+        script_text("--out", out)?;
+    }
+    if let Some(exe) = &a.solsim {
+        script_text("--solsim", exe)?;
+    }
     let scenario = Scenario::load_within(&a.scenario, budget)?;
+    if let Some((_, c)) = first_unsafe_char(&scenario.name) {
+        anyhow::bail!(
+            "{}: name: expected text without control characters (it is written into the script), got \"{}\" (holds {})",
+            printable(&a.scenario.to_string_lossy()),
+            excerpt(&scenario.name, MAX_EXCERPT_CHARS),
+            c.escape_default()
+        );
+    }
     let spec = spec(&a.what, &scenario)?;
     spec.validate(&scenario, budget)?;
     if a.shards > spec.runs {
@@ -258,97 +402,59 @@ fn slurm(a: &SlurmArgs, budget: MemoryBudget, stdout: &mut dyn Write) -> anyhow:
             a.shards
         );
     }
+    let mut sbatch_extra = String::new();
     for (opt, v) in [("--partition", &a.partition), ("--time", &a.time)] {
-        if let Some(v) = v
-            && (v.is_empty()
+        if let Some(v) = v {
+            if v.is_empty()
                 || !v
                     .chars()
-                    .all(|c| c.is_ascii_alphanumeric() || "-_:.".contains(c)))
-        {
-            anyhow::bail!("{opt}: expected letters, digits, '-', '_', ':' or '.', got {v:?}");
+                    .all(|c| c.is_ascii_alphanumeric() || "-_:.".contains(c))
+            {
+                anyhow::bail!(
+                    "{opt}: expected letters, digits, '-', '_', ':' or '.', got \"{}\"",
+                    excerpt(v, MAX_EXCERPT_CHARS)
+                );
+            }
+            let _ = write!(sbatch_extra, " {opt}={v}");
         }
     }
+    // The paths as the script names them, absolute (it runs elsewhere): each checked again,
+    // since the working directory, a symbolic link or this binary's location can add what
+    // the argument did not hold.
     let exe = match &a.solsim {
         Some(p) => absolute(p, "--solsim")?,
         None => std::env::current_exe().context("cannot find this solsim binary")?,
     };
-    let scenario_path = std::fs::canonicalize(&a.scenario)
-        .with_context(|| format!("{}: cannot resolve", a.scenario.display()))?;
+    let scenario_path = std::fs::canonicalize(&a.scenario).with_context(|| {
+        format!(
+            "SCENARIO: cannot resolve {}",
+            printable(&a.scenario.to_string_lossy())
+        )
+    })?;
     let out = absolute(
         &a.out
             .clone()
             .unwrap_or_else(|| Path::new("sweep-out").join(format!("{}-slurm", scenario.name))),
         "--out",
     )?;
-    let m = a.shards;
-    let strategies = spec
-        .strategies
-        .iter()
-        .map(|s| s.name())
-        .collect::<Vec<_>>()
-        .join(",");
-    let baseline = spec.baseline.map_or("none", Strategy::name);
-    let (solsim, scen, outq) = (
-        sh(&exe.to_string_lossy()),
-        sh(&scenario_path.to_string_lossy()),
-        sh(&out.to_string_lossy()),
-    );
-    let mut extra = String::new();
-    if let Some(p) = &a.partition {
-        let _ = write!(extra, " --partition={p}");
+    let out = script_text("--out (made absolute)", &out)?;
+    if out.contains('\\') {
+        anyhow::bail!(
+            "--out: expected a directory without a backslash (Slurm cannot name log files in it), got \"{}\"",
+            excerpt(out, MAX_EXCERPT_CHARS)
+        );
     }
-    if let Some(t) = &a.time {
-        let _ = write!(extra, " --time={t}");
-    }
-    let mut s = String::new();
-    let _ = writeln!(s, "#!/usr/bin/env bash");
-    let _ = writeln!(
-        s,
-        "# solsim sweep of {} on Slurm: runs 0..{} of {strategies} (seed {}), in {m} shards —\n\
-         # one array task per shard (`solsim sweep --shard K/{m}`), then a merge job that runs\n\
-         # once every task has succeeded. Submit from a login node: bash THIS_FILE.\n\
-         # Shards write {out}/shard-K-of-{m}, the merge {out}/merged, Slurm logs {out}/slurm.\n\
-         # A task that is requeued or re-run resumes its shard (--resume).",
-        scenario.name,
-        spec.runs,
-        spec.seed,
-        out = out.display()
-    );
-    let _ = writeln!(s, "set -euo pipefail");
-    let _ = writeln!(s, "out={outq}");
-    let _ = writeln!(s, "mkdir -p \"$out/slurm\"");
-    let _ = writeln!(s, "cat > \"$out/slurm/shard.sh\" <<'SOLSIM_JOB'");
-    let _ = writeln!(s, "#!/usr/bin/env bash\nset -euo pipefail");
-    let _ = writeln!(
-        s,
-        "exec {solsim} sweep {scen} --runs {} --strategies {strategies} --seed {} --baseline {baseline} \\\n  \
-         --threads {} --shard \"$SLURM_ARRAY_TASK_ID/{m}\" --out {outq}/\"shard-$SLURM_ARRAY_TASK_ID-of-{m}\" --resume --quiet",
-        spec.runs, spec.seed, a.threads_per_task
-    );
-    let _ = writeln!(s, "SOLSIM_JOB");
-    let _ = writeln!(s, "cat > \"$out/slurm/merge.sh\" <<'SOLSIM_JOB'");
-    let _ = writeln!(s, "#!/usr/bin/env bash\nset -euo pipefail");
-    let _ = writeln!(
-        s,
-        "exec {solsim} sweep merge {outq}/shard-*-of-{m} --out {outq}/merged --quiet"
-    );
-    let _ = writeln!(s, "SOLSIM_JOB");
-    let _ = writeln!(
-        s,
-        "array=$(sbatch --parsable --job-name=solsim-sweep --array=0-{} --cpus-per-task={}{extra} \\\n  \
-         --output=\"$out/slurm/shard-%a.log\" \"$out/slurm/shard.sh\")",
-        m - 1,
-        a.threads_per_task
-    );
-    let _ = writeln!(s, "array=${{array%%;*}}");
-    let _ = writeln!(
-        s,
-        "merge=$(sbatch --parsable --job-name=solsim-merge --dependency=afterok:\"$array\"{extra} \\\n  \
-         --output=\"$out/slurm/merge.log\" \"$out/slurm/merge.sh\")"
-    );
-    let _ = writeln!(s, "echo \"array job $array\"");
-    let _ = writeln!(s, "echo \"merge job ${{merge%%;*}}\"");
-    write!(stdout, "{s}")?;
+    let job = SlurmJob {
+        name: &scenario.name,
+        solsim: script_text("--solsim (this solsim binary's path)", &exe)?,
+        scenario: script_text("SCENARIO (resolved)", &scenario_path)?,
+        out,
+        spec: &spec,
+        shards: a.shards,
+        threads_per_task: a.threads_per_task,
+        sbatch_extra,
+    };
+    write!(stdout, "{}", job.script())?;
     Ok(())
 }
 

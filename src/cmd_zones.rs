@@ -20,6 +20,7 @@
 
 use anyhow::{Context, anyhow, bail};
 use maps::ZoneSet;
+use maps::input_file::{first_unsafe_char, printable};
 use maps::zone::MAX_COORDINATE_M;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -127,7 +128,8 @@ fn write_table(rows: &[Row<'_>], out: &mut dyn Write) -> std::io::Result<()> {
         .map(|r| {
             let n = r.numbers().map(|v| format!("{v:.3}"));
             [
-                r.name.to_owned(),
+                // The loader refuses control characters in names; escape them all the same.
+                printable(r.name).into_owned(),
                 n[0].clone(),
                 n[1].clone(),
                 n[2].clone(),
@@ -220,6 +222,21 @@ pub fn parse_points(text: &str, path: &Path) -> anyhow::Result<Vec<NamedPoint>> 
         );
     };
     let header = split_fields(header).map_err(|e| anyhow!("{file}: line {header_line}: {e}"))?;
+    // Until the header names one of the columns, the file may be anything (`/etc/shadow`, a
+    // key file): say what was expected, quote nothing of it.
+    if !header
+        .iter()
+        .any(|c| ["x_m", "y_m", "name"].contains(&c.as_str()))
+    {
+        bail!(
+            "{file}: line {header_line}: expected a header row naming the columns x_m, y_m and optionally name, got {} that names none of them (not quoted: the file does not read as a points CSV)",
+            if header.len() == 1 {
+                "a row of 1 field".to_owned()
+            } else {
+                format!("a row of {} fields", header.len())
+            }
+        );
+    }
     let mut unknown = Vec::new();
     let (mut x_col, mut y_col, mut name_col) = (None, None, None);
     for (k, column) in header.iter().enumerate() {
@@ -275,6 +292,11 @@ pub fn parse_points(text: &str, path: &Path) -> anyhow::Result<Vec<NamedPoint>> 
         };
         let xy = [number(x_col)?, number(y_col)?];
         let name = match name_col.map(|c| fields[c].clone()) {
+            // Names are printed in the table: an escape sequence would drive the terminal.
+            Some(name) if first_unsafe_char(&name).is_some() => bail!(
+                "{file}: line {line}, column name: expected text without control characters, got \"{}\"",
+                excerpt(&name, 40)
+            ),
             Some(name) if !name.is_empty() => name,
             _ => format!("point-{}", points.len()),
         };
@@ -361,9 +383,13 @@ mod tests {
         );
         assert!(msg("x_m,y_m\nNaN,1\n").contains("line 2, column x_m"));
         assert!(msg("x_m,y_m,z_m,foo\n").contains("line 1: unknown column(s) \"z_m\", \"foo\""));
-        assert!(
-            msg("1.0,2.0\n").contains("unknown column(s) \"1.0\", \"2.0\"; expected a header row")
+        assert_eq!(
+            msg("1.0,2.0\n"),
+            "points.csv: line 1: expected a header row naming the columns x_m, y_m and optionally name, got a row of 2 fields that names none of them (not quoted: the file does not read as a points CSV)"
         );
+        assert!(msg("x_m,y_m,name\n1,2,a\u{1b}[2J\n").contains(
+            "line 2, column name: expected text without control characters, got \"a\\u{1b}[2J\""
+        ));
         assert!(msg("x_m,name\n").contains("missing column y_m"));
         assert!(msg("x_m,y_m,x_m\n").contains("column x_m appears twice"));
         assert!(msg("x_m,y_m\n1\n").contains("line 2: expected 2 fields (x_m,y_m), got 1"));

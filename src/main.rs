@@ -308,7 +308,13 @@ fn main() -> ExitCode {
     match dispatch(cli) {
         Ok(code) => code,
         Err(e) => {
-            let _ = writeln!(std::io::stderr(), "error: {}", one_line(&e));
+            // Escaped as a whole: a path or a value quoted in a message can never drive the
+            // terminal or break the one line.
+            let _ = writeln!(
+                std::io::stderr(),
+                "error: {}",
+                maps::input_file::printable(&one_line(&e))
+            );
             ExitCode::from(2)
         }
     }
@@ -345,7 +351,11 @@ fn usage_error(e: &clap::Error) -> ExitCode {
             line.push_str(l.strip_prefix("error: ").unwrap_or(l));
         }
     }
-    let _ = writeln!(std::io::stderr(), "error: {line}");
+    let _ = writeln!(
+        std::io::stderr(),
+        "error: {}",
+        maps::input_file::printable(&line)
+    );
     ExitCode::from(2)
 }
 

@@ -3,6 +3,7 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+use maps::input_file::printable;
 use study::expect::Mismatch;
 use study::{Scenario, ScenarioError};
 
@@ -96,15 +97,19 @@ pub fn text_report(results: &[CaseResult]) -> String {
         } else {
             "FAIL"
         };
-        let _ = writeln!(s, "{status} {}  {}", r.case, r.what);
+        // Loaders refuse control characters in names and `what`; escape again all the same,
+        // so nothing from a file can drive the terminal.
+        let _ = writeln!(s, "{status} {}  {}", printable(&r.case), printable(&r.what));
         for m in &r.measured {
-            let _ = writeln!(s, "       {m}");
+            let _ = writeln!(s, "       {}", printable(m));
         }
         for m in &r.mismatches {
             let _ = writeln!(
                 s,
                 "       {}\n       - expected: {}\n       + got:      {}",
-                m.check, m.expected, m.got
+                printable(&m.check),
+                printable(&m.expected),
+                printable(&m.got)
             );
         }
     }
@@ -143,11 +148,28 @@ pub fn json_report(results: &[CaseResult]) -> String {
     serde_json::to_string_pretty(&doc).unwrap_or_default()
 }
 
+/// `s` as XML 1.0 character data or attribute value: markup characters as entities; tab, line
+/// feed and carriage return as character references (kept through attribute normalisation);
+/// every other control character — which XML 1.0 forbids (U+0001 …) or a reader's terminal
+/// would obey — and U+FFFE / U+FFFF as its printable escape (`\u{1}`).
 fn xml_escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\t' => out.push_str("&#9;"),
+            '\n' => out.push_str("&#10;"),
+            '\r' => out.push_str("&#13;"),
+            c if maps::input_file::is_unsafe_char(c) || matches!(c, '\u{fffe}' | '\u{ffff}') => {
+                out.extend(c.escape_default());
+            }
+            c => out.push(c),
+        }
+    }
+    out
 }
 
 /// JUnit XML for CI.

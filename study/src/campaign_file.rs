@@ -309,9 +309,14 @@ impl CampaignFile {
             }
         }
 
+        c.text("name", &raw.name)?;
+        c.text("description", &raw.description)?;
         let name = if raw.name.trim().is_empty() {
-            path.file_stem()
-                .map_or_else(|| "campaign".into(), |s| s.to_string_lossy().into_owned())
+            // The file's name, printed as the plan's title: escaped like any input text.
+            path.file_stem().map_or_else(
+                || "campaign".into(),
+                |s| maps::input_file::printable(&s.to_string_lossy()).into_owned(),
+            )
         } else {
             raw.name.clone()
         };

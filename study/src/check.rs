@@ -120,12 +120,24 @@ impl Check<'_> {
         }
     }
     pub(crate) fn id(&self, field: &str, v: &str) -> Result<(), ScenarioError> {
-        if v.trim().is_empty() || v.contains(['#', ' ']) {
+        if v.trim().is_empty()
+            || v.contains(['#', ' '])
+            || maps::input_file::first_unsafe_char(v).is_some()
+        {
             Err(self.err(
                 field,
-                "a non-empty id without spaces or '#'",
+                "a non-empty id without spaces, '#' or control characters",
                 format!("{v:?}"),
             ))
+        } else {
+            Ok(())
+        }
+    }
+    /// Free text that is printed (a name, a description): refused when it holds a control
+    /// character or a bidi override, which would drive the terminal that shows it.
+    pub(crate) fn text(&self, field: &str, v: &str) -> Result<(), ScenarioError> {
+        if maps::input_file::first_unsafe_char(v).is_some() {
+            Err(self.err(field, "text without control characters", format!("{v:?}")))
         } else {
             Ok(())
         }

@@ -289,6 +289,16 @@ impl RawExpectation {
         campaign_ids: &[&str],
     ) -> Result<Resolved, ScenarioError> {
         let f = |name: &str| format!("expect[{index}].{name}");
+        // `what` is printed by `solsim regress` and written into its JUnit XML: a control
+        // character would drive the terminal or break the XML.
+        if maps::input_file::first_unsafe_char(&self.what).is_some() {
+            return Err(ScenarioError::field(
+                path,
+                f("what"),
+                "text without control characters",
+                format!("{:?}", self.what),
+            ));
+        }
         let names = Strategy::ALL.map(Strategy::name).join(", ");
         let strategy = Strategy::from_name(&self.strategy).ok_or_else(|| {
             ScenarioError::field(

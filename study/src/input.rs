@@ -39,7 +39,8 @@ pub fn parse_toml<T: serde::de::DeserializeOwned>(
     path: &Path,
     text: &str,
 ) -> Result<T, ScenarioError> {
-    toml::from_str(text).map_err(|e| ScenarioError::from_toml(path, text, &e))
+    toml::from_str(text)
+        .map_err(|e| ScenarioError::from_toml(path, text, &e, crate::error::toml_keys::<T>()))
 }
 
 /// SHA-256 of `bytes`, lower-case hex.

@@ -4,6 +4,7 @@
 
 pub mod browser;
 pub mod killed_sweep;
+pub mod tiny;
 
 use std::path::PathBuf;
 use std::process::{Command, Output, Stdio};

@@ -86,6 +86,18 @@ pub enum ZoneError {
         found: String,
     },
 
+    /// A feature's `properties.name` holds a control character (ESC, NUL, a newline …) or a
+    /// bidirectional override: names are printed in messages and written into reports.
+    #[error("{}: features[{feature}].properties.name: expected text without control characters, got {}", path.display(), crate::input_file::excerpt(&format!("{name:?}"), 80))]
+    UnsafeName {
+        /// The zones file.
+        path: PathBuf,
+        /// Index in `features`.
+        feature: usize,
+        /// The name as written.
+        name: String,
+    },
+
     /// A feature has `"geometry": null`.
     #[error("{}: features[{feature}] ({}).geometry: missing; expected a Polygon or MultiPolygon", path.display(), crate::input_file::excerpt(&format!("{name:?}"), 80))]
     MissingGeometry {

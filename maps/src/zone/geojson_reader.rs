@@ -33,8 +33,10 @@ pub(super) fn read_zones(text: &str, path: &Path) -> Result<Vec<ZoneRecord>, Zon
         field: field.to_owned(),
         found,
     };
+    // Until the file shows a `type` member it may be any JSON file (a token, a key file):
+    // what it holds is described, never quoted.
     let Value::Object(mut root) = root else {
-        return Err(not_collection("type", describe(&root)));
+        return Err(not_collection("type", kind_of(&root).to_owned()));
     };
     match root.get("type") {
         Some(Value::String(t)) if t == "FeatureCollection" => {}
@@ -64,6 +66,18 @@ pub(super) fn read_zones(text: &str, path: &Path) -> Result<Vec<ZoneRecord>, Zon
         .collect()
 }
 
+/// What kind of JSON value `value` is, without any of its content.
+fn kind_of(value: &Value) -> &'static str {
+    match value {
+        Value::Null => "null",
+        Value::Bool(_) => "a boolean",
+        Value::Number(_) => "a number",
+        Value::String(_) => "a string",
+        Value::Array(_) => "an array",
+        Value::Object(_) => "an object",
+    }
+}
+
 /// A short description of a JSON value for messages.
 fn describe(value: &Value) -> String {
     match value {
@@ -81,6 +95,13 @@ fn read_feature(i: usize, value: Value, path: &Path) -> Result<ZoneRecord, ZoneE
     let properties = value.get("properties").and_then(Value::as_object);
     let name = match properties.and_then(|p| p.get("name")) {
         None | Some(Value::Null) => format!("zone-{i}"),
+        Some(Value::String(s)) if crate::input_file::first_unsafe_char(s).is_some() => {
+            return Err(ZoneError::UnsafeName {
+                path: path.to_owned(),
+                feature: i,
+                name: s.clone(),
+            });
+        }
         Some(Value::String(s)) => s.clone(),
         Some(other) => {
             return Err(ZoneError::InvalidName {

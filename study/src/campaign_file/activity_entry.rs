@@ -101,6 +101,7 @@ pub(crate) fn activity(
     all_ids: &[&str],
 ) -> Result<Activity, ScenarioError> {
     c.id(&format!("{f}.id"), &a.id)?;
+    c.text(&format!("{f}.name"), &a.name)?;
     let kind = match (&a.drive, a.duration_min) {
         (Some(_), Some(_)) | (None, None) => {
             return Err(c.err(

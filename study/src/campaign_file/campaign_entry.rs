@@ -49,6 +49,7 @@ pub(crate) fn task(
     power_w: f64,
     data_mb: Option<f64>,
 ) -> Result<Activity, ScenarioError> {
+    c.text(&format!("{f}.name"), name)?;
     let mut a = Activity::task(
         id,
         c.minutes(&format!("{f}.duration_min"), duration_min)?,
