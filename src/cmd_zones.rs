@@ -58,8 +58,14 @@ pub struct ZonesCheckArgs {
 /// column), a negative or non-finite footprint radius, or a failed write.
 pub fn run(args: &ZonesCheckArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let footprint = args.footprint_radius_m;
-    if !(footprint.is_finite() && footprint >= 0.0) {
-        bail!("--footprint-radius-m: expected a finite number of metres >= 0, got {footprint}");
+    let range = study::scenario::ranges::FOOTPRINT_RADIUS_M;
+    if !range.contains(footprint) {
+        bail!(
+            "--footprint-radius-m: expected {} ..= {} {}, got {footprint}",
+            range.min,
+            range.max,
+            range.unit
+        );
     }
     let zones = ZoneSet::load(&args.zones)?;
     let points = read_points(&args.points)?;

@@ -91,8 +91,8 @@ enum Command {
     /// Errors: the route or the zones within one grid cell (coordinates in longitude/latitude
     /// degrees, not map metres), a zone entirely off the map, a waypoint inside a keep-out, a
     /// waypoint (the start included) outside the keep-in zones, a leg with no path even at
-    /// r = 0. Warnings: a waypoint where the rover's footprint overlaps a zone, a zone smaller
-    /// than one grid cell.
+    /// r = 0 (also where the rover's footprint overlaps a zone at one of its waypoints).
+    /// Warnings: a zone smaller than one grid cell.
     Validate(solsim::cmd_validate::ValidateArgs),
     /// Keep-in / keep-out zone queries.
     #[command(subcommand)]
@@ -308,12 +308,14 @@ fn main() -> ExitCode {
     match dispatch(cli) {
         Ok(code) => code,
         Err(e) => {
-            // Escaped as a whole: a path or a value quoted in a message can never drive the
+            // Numbers readably whichever layer formatted them (`1e300`, not 301 digits), and
+            // escaped as a whole: a path or a value quoted in a message can never drive the
             // terminal or break the one line.
+            let line = study::error::readable_numbers(&one_line(&e));
             let _ = writeln!(
                 std::io::stderr(),
                 "error: {}",
-                maps::input_file::printable(&one_line(&e))
+                maps::input_file::printable(&line)
             );
             ExitCode::from(2)
         }
@@ -376,8 +378,51 @@ fn one_line(e: &anyhow::Error) -> String {
     line
 }
 
+/// Standard output that a closed pipe does not fail: once the reader has gone
+/// (`solsim compare … | head -1`), the rest of the output is discarded and the command still
+/// does its work — its files, its exit status — instead of dying with `error: Broken pipe`
+/// (exit 2, and a panic in a writer that unwraps). Rust ignores SIGPIPE, so a closed pipe is an
+/// `EPIPE` write error, caught here once for every command.
+struct Stdout<W> {
+    inner: W,
+    /// The reader has gone: write nothing more.
+    closed: bool,
+}
+
+impl<W: std::io::Write> Stdout<W> {
+    fn absorb<T>(&mut self, result: std::io::Result<T>, ok: T) -> std::io::Result<T> {
+        match result {
+            Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {
+                self.closed = true;
+                Ok(ok)
+            }
+            other => other,
+        }
+    }
+}
+
+impl<W: std::io::Write> std::io::Write for Stdout<W> {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        if self.closed {
+            return Ok(buf.len());
+        }
+        let result = self.inner.write(buf);
+        self.absorb(result, buf.len())
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        if self.closed {
+            return Ok(());
+        }
+        let result = self.inner.flush();
+        self.absorb(result, ())
+    }
+}
+
 fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
-    let stdout = &mut std::io::stdout().lock();
+    let stdout = &mut Stdout {
+        inner: std::io::stdout().lock(),
+        closed: false,
+    };
     let budget = MemoryBudget::new(cli.memory_budget_mib << 20);
     match cli.command {
         Command::Compare(a) => compare(&a, budget, stdout),

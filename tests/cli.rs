@@ -242,7 +242,7 @@ fn negative_rate_is_rejected() {
         &[
             path.to_str().expect("utf8"),
             "rover.drive_rate_m_per_h",
-            "positive",
+            "1 ..= 1000",
             "-100",
         ],
     );

@@ -3,7 +3,8 @@
 //! keep-out (every leg then "closed at r = −1.65 m" and `compare` reported the goal reached in
 //! one sol), a start outside the keep-in, a leg closed at r = 0. Each is now an error (exit 2,
 //! listed by `validate`, refused by every other command with one line) or a warning where an
-//! operator may mean it.
+//! operator may mean it (issue 26: a waypoint whose footprint overlaps a zone is no longer one
+//! of those; its legs are closed at r = 0).
 
 use crate::common;
 
@@ -175,8 +176,12 @@ fn a_leg_closed_at_zero_radius_is_an_error() {
     case.compare_refuses(&["route.waypoints[1..=2]"]);
 }
 
+/// A waypoint whose footprint overlaps a zone was a warning ("the rover stops short of it"),
+/// but AutoNav plans to the waypoint's cell, closed there even at r = 0: every strategy drove
+/// 0 m. Issue 26 made its legs the "no path at r = 0" error, with the overlap as the cause
+/// (`tests/issue_26_keep_in_sliver.rs`). A zone smaller than a cell is still a warning.
 #[test]
-fn a_waypoint_touching_a_zone_and_a_tiny_zone_are_warnings() {
+fn a_waypoint_touching_a_zone_closes_its_legs_and_a_tiny_zone_is_a_warning() {
     // Waypoint 1 is (590, 320): a keep-out 1 m east of it overlaps the 1.5 m footprint. A
     // 0.5 m keep-out is smaller than a 1 m cell.
     let zones = [
@@ -187,19 +192,28 @@ fn a_waypoint_touching_a_zone_and_a_tiny_zone_are_warnings() {
     let case = Case::new(None, Some(&zones));
     let o = case.validate(false);
     let out = String::from_utf8_lossy(&o.stdout);
-    assert_eq!(o.status.code(), Some(0), "{out}{}", stderr(&o));
-    assert!(out.contains("ok with 2 warnings"), "{out}");
-    assert!(
-        out.lines()
-            .any(|l| l.contains(": warning: route.waypoints[1]") && l.contains("footprint")),
-        "{out}"
-    );
+    assert_eq!(o.status.code(), Some(2), "{out}{}", stderr(&o));
+    assert!(out.contains("2 errors, 1 warning"), "{out}");
+    for leg in ["[0..=1]", "[1..=2]"] {
+        assert!(
+            out.lines()
+                .any(|l| l.contains(&format!(": error: route.waypoints{leg}"))
+                    && l.contains("at waypoint 1 [590, 320] the footprint overlaps a zone")),
+            "{out}"
+        );
+    }
     assert!(
         out.lines()
             .any(|l| l.contains(": warning: map.zones: keep_out \"pebble\"")),
         "{out}"
     );
-    // A warning refuses nothing.
+    // A warning refuses nothing: the pebble and a rock clear of the route.
+    let zones = [
+        square("keep_out", "rock", 100.0, 300.0, 110.0, 340.0),
+        square("keep_out", "pebble", 900.0, 900.0, 900.5, 900.5),
+    ]
+    .join(",");
+    let case = Case::new(None, Some(&zones));
     let o = solsim()
         .arg("run")
         .arg(case.path())

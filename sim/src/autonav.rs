@@ -80,11 +80,13 @@ impl std::ops::AddAssign for PerTerrain {
 /// Rover and AutoNav settings (plain struct; every field has a unit and a default).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct RoverParams {
-    /// AutoNav drive rate, metres per hour of driving (default: 100).
+    /// AutoNav drive rate, metres per hour of driving (default: 100; range
+    /// [`RoverParams::DRIVE_RATE_RANGE_M_PER_H`]).
     pub drive_rate_m_per_h: f64,
-    /// Length of one AutoNav step, metres (default: 2.0).
+    /// Length of one AutoNav step, metres (default: 2.0; range [`RoverParams::STEP_RANGE_M`]).
     pub step_m: f64,
-    /// A waypoint counts as reached within this distance, metres (default: 2.0).
+    /// A waypoint counts as reached within this distance, metres (default: 2.0; range
+    /// [`RoverParams::WAYPOINT_TOLERANCE_RANGE_M`]).
     pub waypoint_tolerance_m: f64,
     /// Path-cost multiplier of entering a cell, per terrain class, ≥ 1
     /// (default: sand 1.3, soil 1.0, bedrock 1.0).
@@ -162,6 +164,24 @@ impl ProfileSlip {
 /// expected; below 20 % slip VO is taken to work as on level ground. Only
 /// [`SlipModel::Profile`] uses it.
 pub const VO_FAILURE_AT_FULL_SLIP: f64 = 0.5;
+
+impl RoverParams {
+    /// The drive rates a rover may have, m/h: Perseverance's AutoNav drives on the order of
+    /// 100 m/h (the record's 91.9 m/h, README) with a top speed near 150 m/h; 1000 leaves room
+    /// for what-if studies, and below 1 m/h a four-hour window drives less than 4 m. Checked by
+    /// [`crate::Campaign::validate`]; a rate of 5e-324 m/h made the step time infinite and the
+    /// drive time NaN, and the rover then drove without a time limit.
+    pub const DRIVE_RATE_RANGE_M_PER_H: std::ops::RangeInclusive<f64> = 1.0..=1_000.0;
+    /// The AutoNav steps a rover may take, m: MER's AutoNav drove steps of tens of centimetres;
+    /// below 0.25 m the [`MAX_STEPS_PER_SOL`] loop bound could end a whole-sol drive at the
+    /// fastest rate early (1000 m/h × 88,775 s / 0.25 m = 98,640 steps), and a 5e-324 m step
+    /// drove 0 m a sol. Above 10 m the rover would drive several body lengths between path
+    /// checks.
+    pub const STEP_RANGE_M: std::ops::RangeInclusive<f64> = 0.25..=10.0;
+    /// The waypoint tolerances a rover may have, m: 1 cm is below any orbital map's precision
+    /// (HiRISE pixels are 25 cm); beyond 100 m a waypoint no longer marks a place on the route.
+    pub const WAYPOINT_TOLERANCE_RANGE_M: std::ops::RangeInclusive<f64> = 0.01..=100.0;
+}
 
 impl Default for RoverParams {
     fn default() -> Self {
@@ -332,6 +352,13 @@ pub fn drive_sol(
     let errors = &rover.errors;
     let heading_err = Rotation2::new(errs.heading_error_rad);
     let rate_m_per_s = rover.drive_rate_m_per_h / 3600.0;
+    // A rate that underflows to 0 m/s (5e-324 m/h) made each step's time infinite and the
+    // drive time NaN, which then lifted the time limit: the rover drove 537 m in a sol. A rover
+    // that cannot move in finite time does not drive ([`crate::Campaign::validate`] refuses
+    // such a rate; this keeps a campaign built in code from running on).
+    if !(rate_m_per_s > 0.0 && rate_m_per_s.is_finite()) {
+        return out;
+    }
     for _ in 0..MAX_STEPS_PER_SOL {
         if state.next_waypoint >= ctx.route.len() {
             out.reached_goal = true;
@@ -343,7 +370,9 @@ pub fn drive_sol(
         let time_left = limits
             .max_time_s
             .map_or(f64::INFINITY, |t| t - out.drive_time_s);
-        if distance_left <= 1e-9 || time_left <= 1e-9 {
+        // Written so a NaN budget (a time or distance computed from nonsense) ends the drive
+        // rather than lifting its limit.
+        if !(distance_left > 1e-9 && time_left > 1e-9) {
             break;
         }
         let r = state.uncertainty.radius_m(ctx.model);
@@ -485,7 +514,10 @@ pub fn drive_sol(
         out.d_novo_m += odo * novo_fraction;
         out.d_vo_m += odo * (1.0 - novo_fraction);
         out.terrain_m.add(class, odo);
-        out.drive_time_s += cmd_len / rate_m_per_s;
+        // A zero-length step takes no time (0 / 0 would be a NaN that lifts the time limit).
+        if cmd_len > 0.0 {
+            out.drive_time_s += cmd_len / rate_m_per_s;
+        }
         path.progress_m += odo;
         out.path_m.push(to_array(state.estimate.position_m));
         if let SlipModel::Profile(p) = rover.slip_model

@@ -5,6 +5,7 @@
 //! the same guarantees from [`Campaign::validate`], so the runner never meets a route off its
 //! grid, a calendar with gaps, a drive window that ends before it starts or a NaN rate.
 
+use crate::autonav::RoverParams;
 use crate::campaign::Campaign;
 use crate::time::SolSeconds;
 
@@ -54,7 +55,7 @@ pub enum CampaignError {
         end: SolSeconds,
     },
     /// A numeric parameter outside its range.
-    #[error("{name}: expected {expected}, got {value}")]
+    #[error("{name}: expected {expected}, got {value:?}")]
     Parameter {
         /// The parameter, e.g. `rover.step_m`.
         name: &'static str,
@@ -141,13 +142,23 @@ impl Campaign {
             (
                 "rover.drive_rate_m_per_h",
                 r.drive_rate_m_per_h,
-                Rule::Positive,
+                Rule::Range(
+                    RoverParams::DRIVE_RATE_RANGE_M_PER_H,
+                    "1 ..= 1000 metres per hour",
+                ),
             ),
-            ("rover.step_m", r.step_m, Rule::Positive),
+            (
+                "rover.step_m",
+                r.step_m,
+                Rule::Range(RoverParams::STEP_RANGE_M, "0.25 ..= 10 metres"),
+            ),
             (
                 "rover.waypoint_tolerance_m",
                 r.waypoint_tolerance_m,
-                Rule::Positive,
+                Rule::Range(
+                    RoverParams::WAYPOINT_TOLERANCE_RANGE_M,
+                    "0.01 ..= 100 metres",
+                ),
             ),
             (
                 "errors.vo_failure.sand",
@@ -239,29 +250,66 @@ impl Campaign {
 }
 
 /// What a numeric parameter of a campaign may be.
-#[derive(Clone, Copy)]
+#[derive(Clone)]
 enum Rule {
-    Positive,
+    /// A physical range and how it reads in a message.
+    Range(std::ops::RangeInclusive<f64>, &'static str),
     Fraction,
     NonNegative,
     Cost,
 }
 
 impl Rule {
-    fn allows(self, v: f64) -> bool {
+    fn allows(&self, v: f64) -> bool {
         match self {
-            Rule::Positive => v.is_finite() && v > 0.0,
+            Rule::Range(range, _) => range.contains(&v),
             Rule::Fraction => (0.0..=1.0).contains(&v),
             Rule::NonNegative => v.is_finite() && v >= 0.0,
             Rule::Cost => v.is_finite() && v >= 1.0,
         }
     }
-    fn expected(self) -> &'static str {
+    fn expected(&self) -> &'static str {
         match self {
-            Rule::Positive => "a finite positive number",
+            Rule::Range(_, expected) => expected,
             Rule::Fraction => "a fraction between 0 and 1",
             Rule::NonNegative => "a finite non-negative number",
             Rule::Cost => "a cost multiplier ≥ 1",
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The messages spell the ranges the constants hold.
+    #[test]
+    fn range_messages_match_the_constants() {
+        for (range, text) in [
+            (
+                RoverParams::DRIVE_RATE_RANGE_M_PER_H,
+                "1 ..= 1000 metres per hour",
+            ),
+            (RoverParams::STEP_RANGE_M, "0.25 ..= 10 metres"),
+            (
+                RoverParams::WAYPOINT_TOLERANCE_RANGE_M,
+                "0.01 ..= 100 metres",
+            ),
+        ] {
+            assert!(
+                text.starts_with(&format!("{} ..= {} ", range.start(), range.end())),
+                "{text}"
+            );
+        }
+    }
+
+    /// The shortest step at the fastest rate covers a whole sol within the loop bound, so
+    /// [`crate::autonav::MAX_STEPS_PER_SOL`] never ends an in-range drive early.
+    #[test]
+    fn the_step_bound_holds_a_whole_sol_at_the_fastest_rate() {
+        let metres =
+            RoverParams::DRIVE_RATE_RANGE_M_PER_H.end() * f64::from(crate::time::SOL_S) / 3_600.0;
+        let steps = metres / RoverParams::STEP_RANGE_M.start();
+        assert!(steps < crate::autonav::MAX_STEPS_PER_SOL as f64, "{steps}");
     }
 }

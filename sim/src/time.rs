@@ -83,14 +83,19 @@ impl SolSeconds {
         ))
     }
 
-    /// Parse `"HH:MM"` LMST.
+    /// Parse `"HH:MM"` LMST: exactly two ASCII digits, a colon and two ASCII digits, from
+    /// 00:00 to 24:00. Nothing else is a clock reading: no sign (`"+11:30"`, `"11:+3"`, which
+    /// integer parsing accepts), no spaces, no single-digit hour.
     #[must_use]
     pub fn parse_lmst(text: &str) -> Option<Self> {
-        let (h, m) = text.trim().split_once(':')?;
-        if h.is_empty() || m.len() != 2 {
+        let &[h1, h0, b':', m1, m0] = text.as_bytes() else {
+            return None;
+        };
+        if ![h1, h0, m1, m0].iter().all(u8::is_ascii_digit) {
             return None;
         }
-        Self::from_lmst(h.parse().ok()?, m.parse().ok()?)
+        let digit = |d: u8| u32::from(d - b'0');
+        Self::from_lmst(digit(h1) * 10 + digit(h0), digit(m1) * 10 + digit(m0))
     }
 
     /// The LMST clock reading `HH:MM` of this time (rounded to the nearest Mars minute; a time
@@ -158,6 +163,18 @@ mod tests {
         assert_eq!(SolSeconds::parse_lmst("25:00"), None);
         assert_eq!(SolSeconds::parse_lmst("12:60"), None);
         assert_eq!(SolSeconds::parse_lmst("noon"), None);
+        for loose in [
+            "11:+3",
+            "+11:30",
+            " 11:30",
+            "11:30 ",
+            "9:30",
+            "11:3",
+            "-1:00",
+            "١١:٣٠",
+        ] {
+            assert_eq!(SolSeconds::parse_lmst(loose), None, "{loose:?}");
+        }
     }
 
     #[test]

@@ -82,7 +82,9 @@ impl ScenarioError {
         ScenarioError::Field {
             path: path.to_path_buf(),
             field: excerpt(&field.into(), MAX_EXCERPT_CHARS),
-            expected: expected.into(),
+            // An expectation may quote another field's value (`at most battery_capacity_wh =
+            // 1e300 Wh`): numbers print readably there too.
+            expected: readable_numbers(&Into::<String>::into(expected)),
             got: excerpt(&readable_value(&got.to_string()), MAX_EXCERPT_CHARS),
         }
     }
@@ -234,23 +236,50 @@ pub const MAX_EXCERPT_CHARS: usize = 120;
 pub use maps::input_file::excerpt;
 
 /// A number as a person reads it: `1e300` rather than 301 digits, `1.5e-9` rather than a run
-/// of zeros; anything that is not a plain number is returned unchanged.
+/// of zeros, an integer as its digits (`2147483647`, not `2.147483647e9`); anything that is not
+/// a plain number is returned unchanged.
 #[must_use]
 pub fn readable_value(text: &str) -> String {
     let plain = !text.is_empty()
         && text
             .chars()
             .all(|c| c.is_ascii_digit() || matches!(c, '-' | '.' | '+' | 'e' | 'E'));
+    if !plain {
+        return text.to_string();
+    }
+    let digits = text.trim_start_matches(['-', '+']);
+    if !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()) {
+        return readable_integer(text);
+    }
     match text.parse::<f64>() {
-        Ok(v) if plain && v.is_finite() && v != 0.0 && (v.abs() >= 1e9 || v.abs() < 1e-4) => {
+        Ok(v) if v.is_finite() && v != 0.0 && (v.abs() >= 1e15 || v.abs() < 1e-4) => {
             format!("{v:e}")
         }
         _ => text.to_string(),
     }
 }
 
-/// `text` with every run of more than 15 digits (a number no one reads: `1e300` spelled out
-/// by a parser) rewritten as `1e300`.
+/// An integer's digits (optionally signed) as a person reads them: as they are (`2147483647`,
+/// an exact `u64`), unless they are a float's exact spelling of 1e9 or more that scientific
+/// notation says shorter (`1e9`, and `1e300` rather than 301 digits).
+fn readable_integer(text: &str) -> String {
+    let unsigned = text.trim_start_matches('+');
+    match text.parse::<f64>() {
+        Ok(v) if v.is_finite() && v.abs() >= 1e9 && format!("{v}") == unsigned => {
+            let scientific = format!("{v:e}");
+            if scientific.len() < unsigned.len() {
+                scientific
+            } else {
+                text.to_string()
+            }
+        }
+        _ => text.to_string(),
+    }
+}
+
+/// `text` with every run of more than 15 digits that spells a float in full (a number no one
+/// reads: `1e300` spelled out by a parser or a `{}` format) rewritten as `1e300`. Integers a
+/// person wrote, up to `u64::MAX`, stay as they are.
 #[must_use]
 pub fn readable_numbers(text: &str) -> String {
     let mut out = String::with_capacity(text.len());
@@ -263,7 +292,12 @@ pub fn readable_numbers(text: &str) -> String {
             .unwrap_or(run.len());
         let number = &run[..end];
         let digits = number.chars().filter(char::is_ascii_digit).count();
+        let integer = number.trim_end_matches('.');
         match number.parse::<f64>() {
+            Ok(_) if digits > 15 && !integer.contains('.') => {
+                out.push_str(&readable_integer(integer));
+                out.push_str(&number[integer.len()..]);
+            }
             Ok(v) if digits > 15 => out.push_str(&format!("{v:e}")),
             _ => out.push_str(number),
         }
@@ -346,6 +380,14 @@ mod tests {
             "floating point `1e300`, expected u64"
         );
         assert_eq!(readable_numbers("line 12, column 3"), "line 12, column 3");
+        assert_eq!(
+            readable_numbers("got 18446744073709551615."),
+            "got 18446744073709551615."
+        );
+        assert_eq!(
+            readable_numbers(&format!("length_m = {} m", 1e300_f64)),
+            "length_m = 1e300 m"
+        );
     }
 
     #[test]
@@ -354,6 +396,19 @@ mod tests {
         assert_eq!(readable_value(&(-2.5e-9_f64).to_string()), "-2.5e-9");
         assert_eq!(readable_value("0.05"), "0.05");
         assert_eq!(readable_value("123456"), "123456");
+        assert_eq!(readable_value("2147483647"), "2147483647");
+        assert_eq!(readable_value("-2147483648"), "-2147483648");
+        assert_eq!(
+            readable_value("18446744073709551615"),
+            "18446744073709551615"
+        );
+        assert_eq!(readable_value(&1e20_f64.to_string()), "1e20");
+        assert_eq!(readable_value(&(-1e300_f64).to_string()), "-1e300");
+        assert_eq!(readable_value("2147483647.5"), "2147483647.5");
+        assert_eq!(readable_value("1000000000"), "1e9");
+        assert_eq!(readable_value("4294967296"), "4294967296");
+        assert_eq!(readable_value("9007199254740992"), "9007199254740992");
+        assert_eq!(readable_value("1.5e300"), "1.5e300");
         assert_eq!(readable_value("\"abc\""), "\"abc\"");
         assert_eq!(readable_value("NaN"), "NaN");
     }

@@ -246,28 +246,16 @@ pub fn findings(s: &Scenario) -> Vec<Finding> {
                         "AutoNav can never reach it; move the waypoint or widen the keep-in".into()
                     },
                 });
-            } else if let Some(cell) = c.grid.cell_of(w)
-                && c.grid.clearance_m[cell] < 0.0
-            {
-                // Its legs "close" at this negative radius too: the waypoint is the finding.
-                bad_waypoint[i] = true;
-                out.push(Finding {
-                    severity: Severity::Warning,
-                    field,
-                    expected: "a waypoint where the rover's footprint clears the zones".into(),
-                    got: format!(
-                        "{at}, where the footprint overlaps a zone by {:.2} m",
-                        -c.grid.clearance_m[cell]
-                    ),
-                    hint: "the rover stops short of it, within the waypoint tolerance, or the \
-                           leg closes; move it clear if it is a place to reach"
-                        .into(),
-                });
             }
+            // A waypoint where the footprint overlaps a zone is no finding of its own: AutoNav
+            // plans to the waypoint's cell, closed there even at r = 0, so each leg to or from
+            // it is closed at r = 0 and reported below with the overlap as its cause. (It was
+            // a warning that also hid its legs: a keep-in sliver along the route passed.)
         }
     }
 
-    // Legs closed with perfect knowledge (r = 0).
+    // Legs closed with perfect knowledge (r = 0): no path, or one whose narrowest cell the
+    // footprint does not fit (`clearance ≤ 0` closes a cell at r = 0, as AutoNav's A* has it).
     for leg in &s.legs {
         let (a, b) = (leg.to_waypoint - 1, leg.to_waypoint);
         if bad_waypoint[a] || bad_waypoint[b] {
@@ -277,7 +265,24 @@ pub fn findings(s: &Scenario) -> Vec<Finding> {
             None => Some(
                 "no path at all within 150 m of the leg (hazards, slopes and zones)".to_string(),
             ),
-            Some(r) if r < 0.0 => Some(format!("closes at r = {r:.2} m")),
+            Some(r) if r <= 0.0 => {
+                // Name an end whose own cell is closed: moving it clears the leg.
+                let overlap = [a, b].into_iter().find_map(|i| {
+                    let w = c.route[i];
+                    let cell = c.grid.cell_of(w)?;
+                    let clearance = f64::from(c.grid.clearance_m[cell]);
+                    (clearance <= 0.0).then(|| {
+                        format!(
+                            "; at waypoint {i} [{}, {}] the footprint overlaps a zone by {:.2} m",
+                            w[0], w[1], -clearance
+                        )
+                    })
+                });
+                Some(format!(
+                    "closes at r = {r:.2} m{}",
+                    overlap.unwrap_or_default()
+                ))
+            }
             Some(_) => None,
         };
         if let Some(got) = closed {
@@ -286,8 +291,9 @@ pub fn findings(s: &Scenario) -> Vec<Finding> {
                 field: format!("route.waypoints[{a}..={b}]"),
                 expected: "a leg AutoNav can drive with perfect position knowledge (r = 0)".into(),
                 got,
-                hint: "every drive on it faults NO_PATH at once; add a waypoint around the \
-                       obstacle or change the zones"
+                hint: "every drive on it faults NO_PATH at once; move its waypoints where the \
+                       rover's footprint fits, add a waypoint around the obstacle or change the \
+                       zones"
                     .into(),
             });
         }

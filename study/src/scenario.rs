@@ -13,6 +13,7 @@ use rayon::prelude::*;
 use crate::check::Check;
 use crate::error::ScenarioError;
 
+pub mod ranges;
 mod raw;
 
 use crate::expect::{Expectation, Mismatch, StatisticalExpectation};
@@ -21,6 +22,8 @@ use localization::matcher::Method;
 use localization::onboard::OnboardSettings;
 use localization::particle::{KldParams, ParticleParams, Resampling};
 use maps::{GeoTransform, MapLayers, MemoryBudget, ZoneSet};
+use ranges::PhysicalRange;
+pub(crate) use raw::Pair;
 pub use raw::RawScenario;
 use raw::{RawErrors, RawPerTerrain, RawRover};
 use sim::autonav::{PerTerrain, ProfileSlip, RoverParams, SlipModel};
@@ -42,56 +45,31 @@ const DEFAULT_DRIVE_START: &str = "11:00";
 const DEFAULT_DRIVE_END: &str = "15:00";
 const DEFAULT_POST_DRIVE_IMAGING_S: u32 = 1800;
 
-// Physical ranges: a finite value outside them would run to nonsense, so the loader refuses
-// it. Each is generous against the rover it bounds (README, "Scenario files", lists them).
-/// AutoNav rate, m/h: Perseverance drives on the order of 100-200 m/h.
-const MAX_DRIVE_RATE_M_PER_H: f64 = 2_000.0;
-/// AutoNav step, m.
-const MAX_STEP_M: f64 = 50.0;
-/// Waypoint tolerance, m.
-const MAX_TOLERANCE_M: f64 = 100.0;
+// Physical ranges: a finite value outside them would run to nonsense, so the loaders refuse
+// it. Rates and lengths are in [`ranges`] (README, "Input formats", lists them all).
 /// Heading knowledge error (1σ), degrees.
 const MAX_HEADING_SIGMA_DEG: f64 = 45.0;
-/// Margins, uncertainties and localization errors, m: beyond 1 km no passage survives.
-const MAX_MARGIN_M: f64 = 1_000.0;
-/// Rover footprint radius, m.
-const MAX_FOOTPRINT_RADIUS_M: f64 = 10.0;
-/// Planning-grid cell, m (finer grids are held to the memory budget too).
-const MIN_GRID_RESOLUTION_M: f64 = 0.01;
-/// Planning-grid cell, m: coarser cells cannot represent a passage.
-const MAX_GRID_RESOLUTION_M: f64 = 50.0;
-/// Image-matching localizer run-time multiplier on the co-processor.
-const MAX_HBS_SLOWDOWN: f64 = 1_000.0;
+/// `grid.max_slope_deg`, degrees: below 1° natural ground is all hazard; 90° is a wall.
+const SLOPE_LIMIT_DEG: PhysicalRange = PhysicalRange {
+    min: 1.0,
+    max: 90.0,
+    unit: "degrees",
+};
 /// Particle-filter particles: below 100 a 30 m prior is sampled a particle per 9 m²; above
 /// 100 000 an update holds hundreds of MB and takes seconds.
 const MIN_PARTICLES: u32 = 100;
 /// See [`MIN_PARTICLES`].
 const MAX_PARTICLES: u32 = 100_000;
-/// Radio-range noise and satellite image resolution (EKF), m: paper 004 Table 1 has 0.25 to 10.
-const MAX_RANGE_SIGMA_M: f64 = 100.0;
 /// One orbiter pass of EKF ranging, s: a low orbiter is visible for under an hour.
 const MAX_PASS_S: u32 = 3_600;
-/// HBS serial link rate, KB/s: 10 flown, 40 possible (paper 000 §6). Below 1 KB/s the
-/// flight-size inputs would take over five hours, beyond a sol's activities; above 1000 it is
-/// not this serial link.
-const HBS_LINK_RATE_KB_PER_S: [f64; 2] = [1.0, 1_000.0];
 /// The default HBS link rate, KB/s: the flown 10 KB/s (paper 000 §6).
 pub const DEFAULT_HBS_LINK_RATE_KB_PER_S: f64 = 10.0;
 /// Terrain cost multiplier.
 const MAX_TERRAIN_COST: f64 = 1_000.0;
-/// One sol's historic drive, m: the longest Mars drives are well under 1 km per sol.
-const MAX_SOL_DRIVE_M: f64 = 10_000.0;
 /// Scenario name, characters (it names output files).
 const MAX_NAME_CHARS: usize = 100;
 /// Sols in one scenario (about 15 Mars years).
 const MAX_SOLS: usize = 10_000;
-/// Map-metre coordinates: half the equatorial circumference of Mars is 10 660 km, so a larger
-/// coordinate is not on the planet (and would cost f64 precision in the distance queries).
-const MAX_COORDINATE_M: f64 = maps::zone::MAX_COORDINATE_M;
-/// Map pixel size, m.
-const MAX_MAP_RESOLUTION_M: f64 = 1_000.0;
-/// DEM datum, m: Mars spans about −8 km to +22 km.
-const MAX_DATUM_M: f64 = 100_000.0;
 
 /// A scenario file, validated, before its maps are read: stage one of [`Scenario::load`].
 #[derive(Debug)]
@@ -384,18 +362,11 @@ fn error_model(c: &Check<'_>, raw: RawErrors) -> Result<ErrorModel, ScenarioErro
             raw.slip_sigma_relative,
             d.slip_sigma_relative,
         )?,
-        ground_localization_sigma_m: raw.ground_localization_sigma_m.map_or(
-            Ok(d.ground_localization_sigma_m),
-            |v| {
-                c.in_range(
-                    "errors.ground_localization_sigma_m",
-                    v,
-                    0.0,
-                    MAX_MARGIN_M,
-                    "metres",
-                )
-            },
-        )?,
+        ground_localization_sigma_m: raw
+            .ground_localization_sigma_m
+            .map_or(Ok(d.ground_localization_sigma_m), |v| {
+                ranges::MARGIN_M.check(c, "errors.ground_localization_sigma_m", v)
+            })?,
     })
 }
 
@@ -423,17 +394,19 @@ impl ScenarioSpec {
     fn validate(path: &Path, raw: RawScenario, sha256: String) -> Result<Self, ScenarioError> {
         let c = Check { path };
         let base = path.parent().unwrap_or(Path::new("."));
-        // The name becomes output file and directory names.
+        // The name becomes output file and directory names (`solsim-out/NAME/`): `.` and `..`
+        // name the directory itself or its parent, and failed only at write time.
         if raw.name.trim().is_empty()
+            || matches!(raw.name.trim(), "." | "..")
             || raw.name.chars().count() > MAX_NAME_CHARS
             || raw.name.contains(['/', '\\'])
-            || raw.name.chars().any(char::is_control)
+            || maps::input_file::first_unsafe_char(&raw.name).is_some()
         {
             return Err(ScenarioError::field(
                 path,
                 "name",
                 format!(
-                    "a name of 1 ..= {MAX_NAME_CHARS} characters without path separators or control characters"
+                    "a name usable as a directory name: 1 ..= {MAX_NAME_CHARS} characters, not \".\" or \"..\", without path separators or control characters"
                 ),
                 format!("{:?}", raw.name),
             ));
@@ -446,20 +419,15 @@ impl ScenarioSpec {
         let slip = slip_model(&c, &r, errors.slip_sigma_relative)?;
         let rover = RoverParams {
             drive_rate_m_per_h: r.drive_rate_m_per_h.map_or(Ok(d.drive_rate_m_per_h), |v| {
-                c.positive_at_most(
-                    "rover.drive_rate_m_per_h",
-                    v,
-                    MAX_DRIVE_RATE_M_PER_H,
-                    "metres per hour",
-                )
+                ranges::DRIVE_RATE_M_PER_H.check(&c, "rover.drive_rate_m_per_h", v)
             })?,
             step_m: r.step_m.map_or(Ok(d.step_m), |v| {
-                c.positive_at_most("rover.step_m", v, MAX_STEP_M, "metres")
+                ranges::STEP_M.check(&c, "rover.step_m", v)
             })?,
             waypoint_tolerance_m: r
                 .waypoint_tolerance_m
                 .map_or(Ok(d.waypoint_tolerance_m), |v| {
-                    c.positive_at_most("rover.waypoint_tolerance_m", v, MAX_TOLERANCE_M, "metres")
+                    ranges::WAYPOINT_TOLERANCE_M.check(&c, "rover.waypoint_tolerance_m", v)
                 })?,
             terrain_cost: per_terrain(
                 &c,
@@ -469,7 +437,7 @@ impl ScenarioSpec {
                 false,
             )?,
             edge_buffer_m: r.edge_buffer_m.map_or(Ok(d.edge_buffer_m), |v| {
-                c.in_range("rover.edge_buffer_m", v, 0.0, MAX_MARGIN_M, "metres")
+                ranges::MARGIN_M.check(&c, "rover.edge_buffer_m", v)
             })?,
             errors,
             slip_model: slip,
@@ -477,50 +445,32 @@ impl ScenarioSpec {
         let gd = GridParams::default();
         let grid_params = GridParams {
             resolution_m: raw.grid.resolution_m.map_or(Ok(gd.resolution_m), |v| {
-                c.in_range(
-                    "grid.resolution_m",
-                    v,
-                    MIN_GRID_RESOLUTION_M,
-                    MAX_GRID_RESOLUTION_M,
-                    "metres",
-                )
+                ranges::GRID_RESOLUTION_M.check(&c, "grid.resolution_m", v)
             })?,
             footprint_radius_m: r
                 .footprint_radius_m
                 .map_or(Ok(gd.footprint_radius_m), |v| {
-                    c.in_range(
-                        "rover.footprint_radius_m",
-                        v,
-                        0.0,
-                        MAX_FOOTPRINT_RADIUS_M,
-                        "metres",
-                    )
+                    ranges::FOOTPRINT_RADIUS_M.check(&c, "rover.footprint_radius_m", v)
                 })?,
             max_slope_deg: raw.grid.max_slope_deg.map_or(Ok(gd.max_slope_deg), |v| {
-                c.positive_at_most("grid.max_slope_deg", v, 90.0, "degrees")
+                SLOPE_LIMIT_DEG.check(&c, "grid.max_slope_deg", v)
             })?,
             gradient_layer: matches!(rover.slip_model, SlipModel::Profile(_)),
         };
         let ud = UncertaintyModel::default();
         let model = UncertaintyModel {
             k_vo: raw.uncertainty.k_vo.map_or(Ok(ud.k_vo), |v| {
-                c.in_range("uncertainty.k_vo", v, 0.0, 1.0, "metres per metre")
+                ranges::GROWTH_M_PER_M.check(&c, "uncertainty.k_vo", v)
             })?,
             k_novo: raw.uncertainty.k_novo.map_or(Ok(ud.k_novo), |v| {
-                c.in_range("uncertainty.k_novo", v, 0.0, 1.0, "metres per metre")
+                ranges::GROWTH_M_PER_M.check(&c, "uncertainty.k_novo", v)
             })?,
-            initial_margin_m: raw.uncertainty.initial_margin_m.map_or(
-                Ok(ud.initial_margin_m),
-                |v| {
-                    c.in_range(
-                        "uncertainty.initial_margin_m",
-                        v,
-                        0.0,
-                        MAX_MARGIN_M,
-                        "metres",
-                    )
-                },
-            )?,
+            initial_margin_m: raw
+                .uncertainty
+                .initial_margin_m
+                .map_or(Ok(ud.initial_margin_m), |v| {
+                    ranges::MARGIN_M.check(&c, "uncertainty.initial_margin_m", v)
+                })?,
         };
         let l = raw.onboard_localization;
         let localizer_name = l.localizer.as_deref().unwrap_or("statistical");
@@ -574,16 +524,11 @@ impl ScenarioSpec {
                 ));
             }
         }
-        let hbs_slowdown =
-            l.hbs_slowdown
-                .map_or(Ok(OnboardSettings::default().hbs_slowdown), |v| {
-                    c.positive_at_most(
-                        "onboard_localization.hbs_slowdown",
-                        v,
-                        MAX_HBS_SLOWDOWN,
-                        "seconds per second",
-                    )
-                })?;
+        let hbs_slowdown = l
+            .hbs_slowdown
+            .map_or(Ok(OnboardSettings::default().hbs_slowdown), |v| {
+                ranges::HBS_SLOWDOWN.check(&c, "onboard_localization.hbs_slowdown", v)
+            })?;
         let mut particle = ParticleParams::default();
         if let Some(n) = l.particle_count {
             if !(MIN_PARTICLES..=MAX_PARTICLES).contains(&n) {
@@ -613,12 +558,7 @@ impl ScenarioSpec {
         let pd = ParkedSettings::default();
         let ekf = ParkedSettings {
             range_sigma_m: l.range_sigma_m.map_or(Ok(pd.range_sigma_m), |v| {
-                c.positive_at_most(
-                    "onboard_localization.range_sigma_m",
-                    v,
-                    MAX_RANGE_SIGMA_M,
-                    "metres",
-                )
+                ranges::RANGE_SIGMA_M.check(&c, "onboard_localization.range_sigma_m", v)
             })?,
             pass_duration_s: match l.pass_duration_s {
                 None => pd.pass_duration_s,
@@ -646,11 +586,10 @@ impl ScenarioSpec {
             image_resolution_m: l
                 .image_resolution_m
                 .map(|v| {
-                    c.positive_at_most(
+                    ranges::IMAGE_RESOLUTION_M.check(
+                        &c,
                         "onboard_localization.image_resolution_m",
                         v,
-                        MAX_RANGE_SIGMA_M,
-                        "metres per pixel",
                     )
                 })
                 .transpose()?,
@@ -659,43 +598,25 @@ impl ScenarioSpec {
         let hbs_link_bytes_per_s = 1_000.0
             * l.hbs_link_rate_kb_per_s
                 .map_or(Ok(DEFAULT_HBS_LINK_RATE_KB_PER_S), |v| {
-                    c.in_range(
+                    ranges::HBS_LINK_RATE_KB_PER_S.check(
+                        &c,
                         "onboard_localization.hbs_link_rate_kb_per_s",
                         v,
-                        HBS_LINK_RATE_KB_PER_S[0],
-                        HBS_LINK_RATE_KB_PER_S[1],
-                        "KB/s (1 KB = 1000 bytes; 10 flown, 40 after an RCE flight-software update)",
                     )
                 })?;
         let ld = StatisticalLocalizer::default();
         let statistical = StatisticalLocalizer {
             mean_error_m: l.mean_error_m.map_or(Ok(ld.mean_error_m), |v| {
-                c.positive_at_most(
-                    "onboard_localization.mean_error_m",
-                    v,
-                    MAX_MARGIN_M,
-                    "metres",
-                )
+                ranges::LOCALIZATION_ERROR_M.check(&c, "onboard_localization.mean_error_m", v)
             })?,
             p99_error_m: l.p99_error_m.map_or(Ok(ld.p99_error_m), |v| {
-                c.positive_at_most(
-                    "onboard_localization.p99_error_m",
-                    v,
-                    MAX_MARGIN_M,
-                    "metres",
-                )
+                ranges::LOCALIZATION_ERROR_M.check(&c, "onboard_localization.p99_error_m", v)
             })?,
             failure_rate: l.failure_rate.map_or(Ok(ld.failure_rate), |v| {
                 c.fraction("onboard_localization.failure_rate", v)
             })?,
             reported_sigma_m: l.reported_sigma_m.map_or(Ok(ld.reported_sigma_m), |v| {
-                c.in_range(
-                    "onboard_localization.reported_sigma_m",
-                    v,
-                    0.0,
-                    MAX_MARGIN_M,
-                    "metres",
-                )
+                ranges::MARGIN_M.check(&c, "onboard_localization.reported_sigma_m", v)
             })?,
             // The link rate is set with every localizer's, in `Scenario::build`.
             hbs: ld.hbs,
@@ -714,13 +635,7 @@ impl ScenarioSpec {
         let operator_margin_m = l
             .operator_margin_m
             .map_or(Ok(DEFAULT_OPERATOR_MARGIN_M), |v| {
-                c.in_range(
-                    "onboard_localization.operator_margin_m",
-                    v,
-                    0.0,
-                    MAX_MARGIN_M,
-                    "metres",
-                )
+                ranges::MARGIN_M.check(&c, "onboard_localization.operator_margin_m", v)
             })?;
         let ops = raw.operations;
         let drive_start = c.lmst(
@@ -810,19 +725,11 @@ impl ScenarioSpec {
             let historic = match (s.historic_distance_m, s.historic_novo_m) {
                 (None, None) if s.historic_fault.is_none() => None,
                 (Some(dist), novo) => {
-                    let dist = c.in_range(
-                        &f("historic_distance_m"),
-                        dist,
-                        0.0,
-                        MAX_SOL_DRIVE_M,
-                        "metres",
-                    )?;
-                    let novo = c.in_range(
+                    let dist = ranges::SOL_DRIVE_M.check(&c, &f("historic_distance_m"), dist)?;
+                    let novo = ranges::SOL_DRIVE_M.check(
+                        &c,
                         &f("historic_novo_m"),
                         novo.unwrap_or(0.0),
-                        0.0,
-                        MAX_SOL_DRIVE_M,
-                        "metres",
                     )?;
                     if novo > dist {
                         return Err(ScenarioError::field(
@@ -895,21 +802,10 @@ impl ScenarioSpec {
         };
         let georef = match (raw.map.resolution_m_per_px, raw.map.origin_m) {
             (None, None) => None,
-            (Some(res), Some(o)) => {
-                c.positive_at_most(
-                    "map.resolution_m_per_px",
-                    res,
-                    MAX_MAP_RESOLUTION_M,
-                    "metres per pixel",
-                )?;
+            (Some(res), Some(raw::Pair(o))) => {
+                ranges::MAP_RESOLUTION_M_PER_PX.check(&c, "map.resolution_m_per_px", res)?;
                 for (i, v) in o.iter().enumerate() {
-                    c.in_range(
-                        &format!("map.origin_m[{i}]"),
-                        *v,
-                        -MAX_COORDINATE_M,
-                        MAX_COORDINATE_M,
-                        "map metres",
-                    )?;
+                    ranges::COORDINATE_M.check(&c, &format!("map.origin_m[{i}]"), *v)?;
                 }
                 Some(GeoTransform::new(o[0], o[1], res))
             }
@@ -930,13 +826,7 @@ impl ScenarioSpec {
                 ));
             }
         };
-        c.in_range(
-            "map.dem_datum_m",
-            raw.map.dem_datum_m,
-            -MAX_DATUM_M,
-            MAX_DATUM_M,
-            "metres",
-        )?;
+        ranges::DEM_DATUM_M.check(&c, "map.dem_datum_m", raw.map.dem_datum_m)?;
         let map = MapFiles {
             appearance: resolve(&raw.map.appearance),
             dem: resolve(&raw.map.dem),
@@ -953,23 +843,18 @@ impl ScenarioSpec {
                 raw.route.waypoints.len(),
             ));
         }
-        for (i, w) in raw.route.waypoints.iter().enumerate() {
+        let waypoints: Vec<[f64; 2]> = raw.route.waypoints.iter().map(|w| w.0).collect();
+        for (i, w) in waypoints.iter().enumerate() {
             for (k, v) in w.iter().enumerate() {
-                c.in_range(
-                    &format!("route.waypoints[{i}][{k}]"),
-                    *v,
-                    -MAX_COORDINATE_M,
-                    MAX_COORDINATE_M,
-                    "map metres",
-                )?;
+                ranges::COORDINATE_M.check(&c, &format!("route.waypoints[{i}][{k}]"), *v)?;
             }
         }
         // Positions are checked against the map's extent when it is read ([`Scenario::build`]).
         let science = crate::science::resolve_science(
             path,
             &raw.science,
-            &|p| p.iter().all(|v| v.abs() <= MAX_COORDINATE_M),
-            &format!("|x|, |y| ≤ {MAX_COORDINATE_M} m"),
+            &|p| p.iter().all(|v| ranges::COORDINATE_M.contains(*v)),
+            &format!("|x|, |y| ≤ {} m", ranges::COORDINATE_M.max),
         )?;
         let campaign_ids: Vec<&str> = science.campaign_ids().collect();
         let mut expectations = Vec::new();
@@ -991,12 +876,7 @@ impl ScenarioSpec {
                         g.from_sol,
                     ));
                 }
-                Check { path }.positive_at_most(
-                    "study_segment.distance_m",
-                    g.distance_m,
-                    MAX_SOL_DRIVE_M * MAX_SOLS as f64,
-                    "metres",
-                )?;
+                ranges::STUDY_SEGMENT_M.check(&c, "study_segment.distance_m", g.distance_m)?;
                 Some(StudySegment {
                     from_sol: g.from_sol,
                     distance_m: g.distance_m,
@@ -1046,13 +926,7 @@ impl ScenarioSpec {
             passage_margin_m: ops
                 .passage_margin_m
                 .map_or(Ok(defaults.passage_margin_m), |v| {
-                    c.in_range(
-                        "operations.passage_margin_m",
-                        v,
-                        0.0,
-                        MAX_MARGIN_M,
-                        "metres",
-                    )
+                    ranges::MARGIN_M.check(&c, "operations.passage_margin_m", v)
                 })?,
             preemptive_shortening: ops
                 .preemptive_shortening
@@ -1066,7 +940,7 @@ impl ScenarioSpec {
             seed: raw.seed,
             map,
             grid: grid_params,
-            route: raw.route.waypoints,
+            route: waypoints,
             calendar,
             rover,
             model,

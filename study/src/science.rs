@@ -43,8 +43,8 @@ pub fn resolve_science(
             ));
         }
         not_reserved(&c, &format!("{f}.id"), &t.id)?;
-        let [x, y] = t.position_m;
-        if !(x.is_finite() && y.is_finite() && on_map(t.position_m)) {
+        let [x, y] = t.position_m.0;
+        if !(x.is_finite() && y.is_finite() && on_map(t.position_m.0)) {
             return Err(c.err(
                 &format!("{f}.position_m"),
                 format!("a point on the map ({extent})"),
@@ -80,8 +80,12 @@ pub fn resolve_science(
         };
         science.targets.push(Target {
             activity: a,
-            position_m: t.position_m,
-            within_m: c.positive(&format!("{f}.within_m"), t.within_m, "metres")?,
+            position_m: t.position_m.0,
+            within_m: crate::scenario::ranges::WITHIN_M.check(
+                &c,
+                &format!("{f}.within_m"),
+                t.within_m,
+            )?,
             revealed,
         });
     }

@@ -168,6 +168,20 @@ pub enum ZoneError {
         field: String,
     },
 
+    /// A MultiPolygon has no polygons (`"coordinates": []`): a zone with no area.
+    #[error(
+        "{}: features[{feature}] ({}).geometry.coordinates: MultiPolygon has no polygons; expected at least one",
+        path.display(), crate::input_file::excerpt(&format!("{name:?}"), 80)
+    )]
+    EmptyMultiPolygon {
+        /// The zones file.
+        path: PathBuf,
+        /// Index in `features`.
+        feature: usize,
+        /// The feature's name, or `zone-<index>`.
+        name: String,
+    },
+
     /// A coordinate is NaN or infinite (a `NaN` or `Infinity` literal, as some JSON writers emit).
     #[error(
         "{}: features[{feature}] ({}).{field}: {axis} is {value}; expected a finite number of metres",
@@ -222,12 +236,12 @@ pub enum ZoneError {
         vertices: usize,
     },
 
-    /// A position has fewer than two numbers.
+    /// A position is not two numbers: fewer, or a third (an altitude, which zones do not use).
     #[error(
-        "{}: features[{feature}] ({}).{field}: position has {len} number(s); expected [x, y] in metres",
+        "{}: features[{feature}] ({}).{field}: position has {len} number(s); expected [x, y] in metres (no altitude)",
         path.display(), crate::input_file::excerpt(&format!("{name:?}"), 80)
     )]
-    PositionTooShort {
+    PositionNotXy {
         /// The zones file.
         path: PathBuf,
         /// Index in `features`.

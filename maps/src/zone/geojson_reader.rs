@@ -178,6 +178,13 @@ fn read_feature(i: usize, value: Value, path: &Path) -> Result<ZoneRecord, ZoneE
         geojson::GeometryValue::Polygon { coordinates } => {
             vec![ctx.polygon(&coordinates, "geometry.coordinates", "geometry")?]
         }
+        geojson::GeometryValue::MultiPolygon { coordinates } if coordinates.is_empty() => {
+            return Err(ZoneError::EmptyMultiPolygon {
+                path: path.to_owned(),
+                feature: i,
+                name,
+            });
+        }
         geojson::GeometryValue::MultiPolygon { coordinates } => coordinates
             .iter()
             .enumerate()
@@ -238,16 +245,17 @@ impl FeatureContext<'_> {
         for (r, ring) in rings.iter().enumerate() {
             let mut ring_xy = Vec::with_capacity(ring.len());
             for (k, position) in ring.iter().enumerate() {
+                // [x, y] only: an altitude would be dropped without a word.
                 match position.as_slice() {
-                    [x, y, ..] => ring_xy.push([*x, *y]),
-                    short => {
+                    [x, y] => ring_xy.push([*x, *y]),
+                    other => {
                         let field = format!("{rings_field}[{r}][{k}]");
-                        return Err(ZoneError::PositionTooShort {
+                        return Err(ZoneError::PositionNotXy {
                             path,
                             feature,
                             name,
                             field,
-                            len: short.len(),
+                            len: other.len(),
                         });
                     }
                 }

@@ -5,6 +5,7 @@ use planner::{Activity, ActivityKind, Drive, Timeline};
 use super::raw::{RawActivity, RawDrive};
 use crate::check::{Check, lmst_of};
 use crate::error::ScenarioError;
+use crate::scenario::ranges;
 
 /// Default shortest drive segment when a drive gives no `min_segment_min`, minutes.
 pub const DEFAULT_MIN_SEGMENT_MIN: f64 = 10.0;
@@ -16,12 +17,9 @@ pub(crate) fn drive(
     d: &RawDrive,
     state_every_m: &[f64],
 ) -> Result<Drive, ScenarioError> {
-    let length_m = c.positive(&format!("{f}.length_m"), d.length_m, "metres")?;
-    let rate_m_per_h = c.positive(
-        &format!("{f}.rate_m_per_h"),
-        d.rate_m_per_h,
-        "metres per hour",
-    )?;
+    let length_m = ranges::DRIVE_LENGTH_M.check(c, &format!("{f}.length_m"), d.length_m)?;
+    let rate_m_per_h =
+        ranges::DRIVE_RATE_M_PER_H.check(c, &format!("{f}.rate_m_per_h"), d.rate_m_per_h)?;
     // The planner takes drives of at most 3 sols (259 200 s).
     let drive_s = 3600.0 * length_m / rate_m_per_h;
     if drive_s > 259_200.0 {

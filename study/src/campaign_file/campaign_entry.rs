@@ -6,6 +6,7 @@ use planner::{Activity, Campaign, CampaignIntent};
 use super::raw::{RawCampaign, RawTemplate};
 use crate::check::{Check, lmst_of};
 use crate::error::ScenarioError;
+use crate::scenario::ranges;
 
 fn template(
     c: &Check<'_>,
@@ -184,7 +185,8 @@ pub(crate) fn campaign(
         "state_based" => {
             only_for(c, f, "state_based", &periodic_fields)?;
             only_for(c, f, "state_based", &[("members", rc.members.is_some())])?;
-            let every_m = c.positive(
+            let every_m = ranges::CADENCE_M.check(
+                c,
                 &format!("{f}.every_m"),
                 rc.every_m.ok_or_else(|| {
                     c.err(
@@ -193,12 +195,11 @@ pub(crate) fn campaign(
                         "none",
                     )
                 })?,
-                "metres",
             )?;
-            let tolerance_m = c.non_negative(
+            let tolerance_m = ranges::CADENCE_TOLERANCE_M.check(
+                c,
                 &format!("{f}.tolerance_m"),
                 rc.tolerance_m.unwrap_or(0.0),
-                "metres",
             )?;
             let mut tpl = template(c, f, rc.template.as_ref(), &rc.id, activities)?;
             tpl.earliest_start_s = start_s;
