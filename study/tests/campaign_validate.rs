@@ -32,7 +32,7 @@ fn a_loaded_campaign_is_valid_and_broken_ones_are_named() {
     let e = c.validate().expect_err("NaN step");
     assert_eq!(
         e.to_string(),
-        "rover.step_m: expected a finite positive number, got NaN"
+        "rover.step_m: expected 0.25 ..= 10 metres, got NaN"
     );
 
     let mut c = s.campaign.clone();
