@@ -301,7 +301,7 @@ impl Manifest {
                 for (i, c) in self.chunks.iter().enumerate() {
                     let on_grid = c.first_run >= range.start
                         && c.first_run < range.end
-                        && (c.first_run - range.start) % size == 0
+                        && (c.first_run - range.start).is_multiple_of(size)
                         && c.end_run == c.first_run.saturating_add(size).min(range.end);
                     if !on_grid {
                         return bad(
