@@ -513,7 +513,7 @@ fn compare(
         sweep::engine::check_runs(runs, report_runs::MIN_RUNS)?;
     }
     solsim::cmd_report::check_map_r(a.map_r_m)?;
-    let scenario = Scenario::load_within(&a.scenario, budget)?;
+    let scenario = solsim::progress::load_scenario("compare", &a.scenario, budget)?;
     let spec = match a.runs {
         None => None,
         Some(runs) => {
@@ -612,7 +612,7 @@ fn run_one(
             names.join(", ")
         );
     };
-    let scenario = Scenario::load_within(path, budget)?;
+    let scenario = solsim::progress::load_scenario("run", path, budget)?;
     if strategy == Strategy::Replay && !scenario.has_history {
         anyhow::bail!(
             "{}: sols[*].historic_distance_m: expected historic distances for a replay, got none",
