@@ -224,9 +224,10 @@ impl TerrainParams {
 }
 
 /// Most landform evaluations ([`landform_evaluations`]) a recipe may ask for. Measured
-/// (issue 26): a recipe at this cap spends about a minute on one core in its landforms (craters
-/// that reach far, many ridges, dune fields or sand patches), beyond the ~1 µs per pixel every
-/// map costs; 1 000 000 large craters took 3 minutes before.
+/// (issue 26, one core): a crater evaluation costs about 7 ns, a ridge 2 ns, a dune field or
+/// sand patch under 1 ns, so a recipe at this cap spends at most about 15 s in its landforms,
+/// beyond the ~0.5 µs per pixel every map costs (a recipe of 1 000 000 large craters ran 3
+/// minutes before).
 pub const MAX_LANDFORM_EVALUATIONS: u64 = 2_000_000_000;
 
 /// How many times [`generate`] evaluates a landform at a pixel for `params`: each crater at

@@ -70,9 +70,9 @@ pub const LEG_WINDOW_MARGIN_M: f64 = 150.0;
 pub const MAX_WAYPOINTS: usize = 10_000;
 
 /// Most grid cells the passage searches of one route may cover together
-/// ([`leg_search_cells`]). Measured: a route at this cap whose every leg needs the full search
-/// loads in about 30 s on one core of a 2024 laptop (issue 26); legs through open ground take a
-/// fraction of that.
+/// ([`leg_search_cells`]). Measured (issue 26, one core): 2000 legs through the sol 383-386
+/// passage, each needing the full search (2.8e8 cells), load in 16 s; legs through open ground
+/// take a fraction of that, and a second core halves it.
 pub const MAX_LEG_SEARCH_CELLS: u64 = 300_000_000;
 
 /// Per-leg passage clearance of the route (independent of strategy).
