@@ -47,6 +47,8 @@ mod issue_13_report_out_keeps_run;
 mod issue_13_validate_nonsense;
 mod issue_14_sweep_half_written_manifest;
 mod issue_16_unreachable_drive_bound;
+mod issue_26_crater_recipe_cap;
+mod issue_26_long_route_progress;
 mod localize_cli;
 mod localizer_comparison;
 mod operations_rules;
