@@ -10,7 +10,9 @@
 //! terminal.
 //!
 //! Stated bound: a route at the cells cap through open ground (3200 short legs on the 1 m grid
-//! of the crater-floor map) validates in under 10 s (0.3 s measured; 21 s before).
+//! of the crater-floor map) validates in under 4 s (0.1 s measured; 12 s before). The worst
+//! route at the cap, whose every leg needs the full search (2000 legs through the sol 383-386
+//! passage), takes 8 s on two cores and 16 s on one: too slow for the suite.
 
 use crate::common;
 
@@ -59,7 +61,7 @@ fn a_route_at_the_search_cap_validates_in_seconds() {
     let report: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
     assert_eq!(report["legs"].as_array().map(Vec::len), Some(3200));
     assert!(
-        took < Duration::from_secs(10),
+        took < Duration::from_secs(4),
         "validate of 3200 legs took {took:?}; stderr: {}",
         stderr(&o)
     );
