@@ -452,4 +452,30 @@ mod tests {
         };
         assert_eq!(ridge(&base), ridge(&dense));
     }
+
+    #[test]
+    fn evaluations_are_the_work_of_the_bins_and_the_other_landforms() {
+        // 1000 × 700 px: the last bins are short on both sides.
+        let p = TerrainParams {
+            width_px: 1000,
+            height_px: 700,
+            crater_density_per_km2: 200.0,
+            crater_radius_max_m: 90.0,
+            ridge_count: 4,
+            sand_patches: vec![([10.0, 10.0], 5.0)],
+            ..TerrainParams::default()
+        }
+        .sanitized();
+        let l = Landforms::new(&p);
+        let mut want = 0u64;
+        for row in 0..p.height_px {
+            for col in 0..p.width_px {
+                let bin = l.bins_x * (row / BIN_PX) + col / BIN_PX;
+                want += u64::from(l.bin_start[bin + 1] - l.bin_start[bin]);
+            }
+        }
+        want += 1000 * 700 * 5;
+        assert_eq!(Landforms::evaluations(&p), want);
+        assert!(want > 1000 * 700 * 6, "the craters count too: {want}");
+    }
 }
