@@ -200,7 +200,7 @@ pub const MAX_KEEP_IN_VERTICES: usize = 10_000;
 /// Most vertices (positions, closing ones included) all polygons of one zones file may have
 /// together. Measured (issue 26, 2 cores): the worst shapes at this cap — one ring of 199 000
 /// vertices, as a fine circle or as saw teeth, or 10 000 spiky polygons of 19 — run
-/// `solsim compare --report` in 4 to 20 s at a peak of 270 to 430 MB, within the default
+/// `solsim compare --report` in 1 to 12 s at a peak of 270 to 430 MB, within the default
 /// memory budget. Rover planners' zone files have hundreds to thousands.
 pub const MAX_ZONE_VERTICES: usize = 200_000;
 
