@@ -30,7 +30,14 @@ pub fn generate(
 ) -> anyhow::Result<()> {
     let recipe = load_recipe(&args.recipe, budget)?;
     let params = &recipe.terrain;
-    let layers = procedural::generate(params);
+    let progress = crate::progress::Progress::new(
+        false,
+        "map generate",
+        "rows",
+        procedural::progress_rows(params),
+    );
+    let layers = procedural::generate_observed(params, &|| progress.inc());
+    progress.finish();
     layers
         .write_dir(&args.out, recipe.dem_datum_m, &recipe.crs)
         .with_context(|| format!("{}: cannot write the map", args.out.display()))?;

@@ -67,7 +67,13 @@ pub fn run(
     budget: MemoryBudget,
     stdout: &mut dyn Write,
 ) -> anyhow::Result<ExitCode> {
-    let (s, findings) = Scenario::inspect_within(&a.scenario, budget)?;
+    // A long route's passage searches take a while: a bar over the legs on a terminal.
+    let progress = crate::progress::Progress::new(false, "validate", "legs", 0);
+    let loaded = Scenario::inspect_observed(&a.scenario, budget, &|done, total| {
+        progress.update(done, total);
+    });
+    progress.finish();
+    let (s, findings) = loaded?;
     let c = &s.campaign;
     let errors = findings
         .iter()

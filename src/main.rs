@@ -31,10 +31,10 @@ use sweep::engine::SweepSpec;
 struct Cli {
     #[command(subcommand)]
     command: Command,
-    /// Memory the command may use for maps, rasters and the planning grid, MiB. Sizes are
-    /// computed from the inputs (raster headers, map extent ÷ grid.resolution_m, recipe sizes)
-    /// and checked before anything is allocated; over it, the command stops with an error
-    /// naming the field.
+    /// Memory the command may use for maps, rasters, the planning grid and zones, MiB. Sizes
+    /// are computed from the inputs (raster headers, map extent ÷ grid.resolution_m, recipe
+    /// sizes, zone vertices) and checked before anything is allocated; over it, the command
+    /// stops with an error naming the field.
     #[arg(long, global = true, value_name = "MIB", default_value_t = MemoryBudget::DEFAULT_BYTES >> 20,
           value_parser = clap::value_parser!(u64).range(1..=(1 << 30)))]
     memory_budget_mib: u64,
@@ -568,7 +568,7 @@ fn compare(
         sweep::engine::check_runs(runs, report_runs::MIN_RUNS)?;
     }
     solsim::cmd_report::check_map_r(a.map_r_m)?;
-    let scenario = Scenario::load_within(&a.scenario, budget)?;
+    let scenario = solsim::progress::load_scenario("compare", &a.scenario, budget)?;
     let spec = match a.runs {
         None => None,
         Some(runs) => {
@@ -667,7 +667,7 @@ fn run_one(
             names.join(", ")
         );
     };
-    let scenario = Scenario::load_within(path, budget)?;
+    let scenario = solsim::progress::load_scenario("run", path, budget)?;
     if strategy == Strategy::Replay && !scenario.has_history {
         anyhow::bail!(
             "{}: sols[*].historic_distance_m: expected historic distances for a replay, got none",

@@ -1,7 +1,8 @@
 //! Progress on standard error for the commands that can run for more than a couple of
-//! seconds (`sweep`, `compare --runs`, `localize-bench`, `seu-campaign`, `map package`): a bar
-//! when standard error is a terminal, nothing when it is piped or redirected, so logs and
-//! captured output hold only results.
+//! seconds (`sweep`, `compare --runs`, `localize-bench`, `seu-campaign`, `map package`,
+//! `map generate`, and loading a scenario in `validate`, `run` and `compare`, whose passage
+//! search runs leg by leg): a bar when standard error is a terminal, nothing when it is piped
+//! or redirected, so logs and captured output hold only results.
 
 use std::io::IsTerminal as _;
 
@@ -50,4 +51,22 @@ impl Progress {
             bar.finish_and_clear();
         }
     }
+}
+
+/// Loads a scenario with a bar over its route's legs (the passage searches, the long part of
+/// loading a long route) labelled `label`, cleared when done.
+///
+/// # Errors
+/// As [`study::Scenario::load_within`].
+pub fn load_scenario(
+    label: &str,
+    path: &std::path::Path,
+    budget: maps::MemoryBudget,
+) -> Result<study::Scenario, study::ScenarioError> {
+    let progress = Progress::new(false, label, "legs", 0);
+    let loaded = study::Scenario::load_observed(path, budget, &|done, total| {
+        progress.update(done, total);
+    });
+    progress.finish();
+    loaded
 }

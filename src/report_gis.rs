@@ -25,7 +25,7 @@
 //! | `<scenario>.<strategy>` | LineString, Point | each sol's drive (estimated positions); each drive's end with MMGIS ellipse properties |
 //! | `<scenario>.<strategy>.ellipses` | Polygon | each drive's end uncertainty disc, [`ELLIPSE_VERTICES`] vertices |
 //! | `<scenario>.<strategy>.faults` | Point | where each fault stopped the drive |
-//! | `<scenario>.<strategy>.fault-zones` | MultiPolygon | at each fault: every keep-out grown, and the keep-in union shrunk, by r + footprint |
+//! | `<scenario>.<strategy>.fault-zones` | MultiPolygon | at each fault: every keep-out within r + footprint + 150 m of it (the leg search's margin) grown, and the keep-in union shrunk, by r + footprint |
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -444,7 +444,14 @@ pub fn run_layers(scenario: &Scenario, outcome: &CampaignOutcome) -> Vec<Layer> 
                 "offset_m": signed_offset_m,
             })
         };
-        for (h, area) in scenario.zones.keep_outs_grown(offset_m) {
+        // The keep-outs within reach of the fault's search (its window around the leg), not
+        // every keep-out of the map at every fault: a file of thousands of keep-outs would
+        // otherwise write them all again per fault (issue 26: 665 MB).
+        let reach_m = offset_m + sim::campaign::LEG_WINDOW_MARGIN_M;
+        for (h, area) in scenario
+            .zones
+            .keep_outs_grown_near(offset_m, f.position_m, reach_m)
+        {
             let z = scenario.zones.get(h).expect("a handle of this set");
             let mut p = props("keep_out", z.name(), offset_m);
             p["feature_index"] = json!(z.feature_index());

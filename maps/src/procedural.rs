@@ -173,8 +173,10 @@ impl Default for TerrainParams {
 
 impl TerrainParams {
     /// A copy with every non-finite number replaced by its default and every size made
-    /// non-negative, so generation never meets NaN.
-    fn sanitized(&self) -> Self {
+    /// non-negative and the ridges capped, so generation never meets NaN: what [`generate`]
+    /// uses.
+    #[must_use]
+    pub fn sanitized(&self) -> Self {
         let d = Self::default();
         let fin = |v: f64, def: f64| if v.is_finite() { v } else { def };
         let pos = |v: f64, def: f64| if v.is_finite() { v.max(0.0) } else { def };
@@ -221,12 +223,41 @@ impl TerrainParams {
     }
 }
 
+/// Most landform evaluations ([`landform_evaluations`]) a recipe may ask for. Measured
+/// (issue 26, one core): a crater evaluation costs about 7 ns, a ridge 2 ns, a dune field or
+/// sand patch under 1 ns, so a recipe at this cap spends at most about 15 s in its landforms,
+/// beyond the ~0.5 µs per pixel every map costs (a recipe of 1 000 000 large craters ran 3
+/// minutes before).
+pub const MAX_LANDFORM_EVALUATIONS: u64 = 2_000_000_000;
+
+/// How many times [`generate`] evaluates a landform at a pixel for `params`: each crater at
+/// every pixel of the 32 × 32 px bins its ejecta reaches, and each ridge, dune field and sand
+/// patch at every pixel. Computed from the craters as drawn (cheap: no pixel is generated), so
+/// a recipe can be refused before its generation starts.
+#[must_use]
+pub fn landform_evaluations(params: &TerrainParams) -> u64 {
+    Landforms::evaluations(&params.sanitized())
+}
+
+/// Rows [`generate_observed`] reports: each of its three passes over the map's rows.
+#[must_use]
+pub fn progress_rows(params: &TerrainParams) -> u64 {
+    3 * params.sanitized().height_px as u64
+}
+
 /// Generates the three layers of a map from `params`, deterministically.
 ///
 /// All layers share `params.geo` and size. A zero width or height gives empty layers.
 /// 1500 × 1500 px takes well under a second in release builds.
 #[must_use]
 pub fn generate(params: &TerrainParams) -> MapLayers {
+    generate_observed(params, &|| {})
+}
+
+/// [`generate`], calling `on_row` as each row of each of its three passes is done
+/// ([`progress_rows`] calls in all, from any thread; for a progress bar).
+#[must_use]
+pub fn generate_observed(params: &TerrainParams, on_row: &(dyn Fn() + Sync)) -> MapLayers {
     let p = params.sanitized();
     let (w, h) = (p.width_px, p.height_px);
     let geo = p.geo;
@@ -250,6 +281,7 @@ pub fn generate(params: &TerrainParams) -> MapLayers {
         .enumerate()
         .for_each(|(row, (dem_row, forced_row))| {
             landforms.fill_row(row, &xs, y_of(row), clamp_height, dem_row, forced_row);
+            on_row();
         });
 
     // 2. Per-pixel class scores and illumination.
@@ -276,6 +308,7 @@ pub fn generate(params: &TerrainParams) -> MapLayers {
             px.rock = (above_mean_m + 5.0 * grad + 1.5 * rock_row[col]) as f32;
             px.light = light(dz_dx, dz_dy, sun) as f32;
         }
+        on_row();
     });
 
     // 3. Classes and appearance.
@@ -318,6 +351,7 @@ pub fn generate(params: &TerrainParams) -> MapLayers {
                 // Adding ½ and truncating rounds without a libm call.
                 *a = (gray.clamp(0.0, 255.0) + 0.5) as u8;
             }
+            on_row();
         });
 
     MapLayers {

@@ -197,29 +197,111 @@ pub const MAX_COORDINATE_M: f64 = 11_000_000.0;
 /// have tens to hundreds.
 pub const MAX_KEEP_IN_VERTICES: usize = 10_000;
 
+/// Most vertices (positions, closing ones included) all polygons of one zones file may have
+/// together. Measured (issue 26, 2 cores): the worst shapes at this cap — one ring of 199 000
+/// vertices, as a fine circle or as saw teeth, or 10 000 spiky polygons of 19 — run
+/// `solsim compare --report` in 1 to 12 s at a peak of 270 to 430 MB, within the default
+/// memory budget. Rover planners' zone files have hundreds to thousands.
+pub const MAX_ZONE_VERTICES: usize = 200_000;
+
+/// Most polygons (a `Polygon` feature is one, a `MultiPolygon` one per part) one zones file may
+/// have. Each keep-out is grown again for the maps of a run, and near each fault for its GIS
+/// layer, so outputs grow with it: at this cap `compare --report` writes 130 to 170 MB.
+pub const MAX_ZONE_POLYGONS: usize = 10_000;
+
+/// Memory a command holds per zone vertex at its peak (`solsim compare --report`: parsing,
+/// the zone set, its grown copies, the maps and GIS layers written), bytes. Measured from
+/// peak RSS over rings of 100 000 and 199 000 vertices (630 B per vertex) and rounded up.
+pub const BYTES_PER_ZONE_VERTEX: u64 = 1_000;
+
+/// Memory a command holds per zone polygon beyond its vertices (each grown keep-out's round
+/// corners in the maps and GIS layers), bytes. Measured like [`BYTES_PER_ZONE_VERTEX`] over
+/// 10 000 squares (22 kB per polygon) and rounded up.
+pub const BYTES_PER_ZONE_POLYGON: u64 = 30_000;
+
 impl ZoneSet {
-    /// Read and validate a zones GeoJSON file (see the [module docs](self) for the format).
+    /// Read and validate a zones GeoJSON file (see the [module docs](self) for the format)
+    /// within the default [`MemoryBudget`](crate::MemoryBudget).
     ///
     /// # Errors
     /// [`ZoneError::Io`] when the file cannot be read (also for a FIFO, a device or a file over
     /// [`crate::input_file::MAX_TEXT_FILE_BYTES`]), otherwise as
     /// [`ZoneSet::from_geojson_str`].
     pub fn load(path: &Path) -> Result<ZoneSet, ZoneError> {
+        Self::load_within(path, crate::MemoryBudget::default(), 0)
+    }
+
+    /// [`ZoneSet::load`] for a command that already holds `held_bytes` (maps, planning grid)
+    /// of `budget`: the zones' geometry ([`ZoneSet::memory_bytes`]) must fit beside them.
+    ///
+    /// # Errors
+    /// As [`ZoneSet::load`], and [`ZoneError::OverBudget`].
+    pub fn load_within(
+        path: &Path,
+        budget: crate::MemoryBudget,
+        held_bytes: u64,
+    ) -> Result<ZoneSet, ZoneError> {
         let text = crate::input_file::read_text_file(path).map_err(|error| ZoneError::Io {
             path: path.to_owned(),
             error,
         })?;
-        Self::from_geojson_str(&text, path)
+        Self::from_geojson_str_within(&text, path, budget, held_bytes)
+    }
+
+    /// Memory a command holds for zones of `polygons` polygons with `vertices` vertices in all,
+    /// at its peak, bytes (saturating): what [`ZoneSet::load_within`] counts against the
+    /// budget.
+    #[must_use]
+    pub fn memory_bytes(polygons: usize, vertices: usize) -> u64 {
+        crate::memory_budget::bytes_of(&[vertices as u64, BYTES_PER_ZONE_VERTEX]).saturating_add(
+            crate::memory_budget::bytes_of(&[polygons as u64, BYTES_PER_ZONE_POLYGON]),
+        )
     }
 
     /// Parse and validate zones from GeoJSON text; `source` is the file name used in errors.
     ///
     /// # Errors
-    /// A [`ZoneError`] for the first problem found: invalid JSON, not a FeatureCollection, a
-    /// feature without a valid `kind`, an unsupported geometry, a non-finite coordinate or an
-    /// invalid ring.
+    /// A [`ZoneError`] for the first problem found: invalid JSON, not a FeatureCollection, more
+    /// than [`MAX_ZONE_POLYGONS`] polygons or [`MAX_ZONE_VERTICES`] vertices, a feature without
+    /// a valid `kind`, an unsupported geometry, a non-finite coordinate or an invalid ring.
     pub fn from_geojson_str(text: &str, source: &Path) -> Result<ZoneSet, ZoneError> {
-        let records = geojson_reader::read_zones(text, source)?;
+        Self::from_geojson_str_within(text, source, crate::MemoryBudget::default(), 0)
+    }
+
+    /// [`ZoneSet::from_geojson_str`] within `budget`, of which `held_bytes` are taken (see
+    /// [`ZoneSet::load_within`]). The polygons and vertices are counted, and refused over the
+    /// caps or the budget, before any geometry is converted or validated.
+    ///
+    /// # Errors
+    /// As [`ZoneSet::from_geojson_str`], and [`ZoneError::OverBudget`].
+    pub fn from_geojson_str_within(
+        text: &str,
+        source: &Path,
+        budget: crate::MemoryBudget,
+        held_bytes: u64,
+    ) -> Result<ZoneSet, ZoneError> {
+        let check = |polygons: usize, vertices: usize| {
+            let path = source.to_owned();
+            if polygons > MAX_ZONE_POLYGONS {
+                return Err(ZoneError::TooManyPolygons { path, polygons });
+            }
+            if vertices > MAX_ZONE_VERTICES {
+                return Err(ZoneError::TooManyVertices { path, vertices });
+            }
+            let need_bytes = Self::memory_bytes(polygons, vertices);
+            if !budget.allows(held_bytes.saturating_add(need_bytes)) {
+                return Err(ZoneError::OverBudget {
+                    path,
+                    polygons,
+                    vertices,
+                    need_bytes,
+                    held_bytes,
+                    budget,
+                });
+            }
+            Ok(())
+        };
+        let records = geojson_reader::read_zones(text, source, &check)?;
         // The keep-in union's boundary costs time quadratic in overlapping keep-in edges
         // (10 000 vertices of 100 overlapping keep-ins: 0.9 s; 64 000: 29 s): bound it.
         let keep_in_vertices: usize = records

@@ -61,43 +61,69 @@ pub struct Campaign {
     pub science: Science,
 }
 
+/// Margin of the window around each leg within which [`leg_clearances`] searches, metres.
+pub const LEG_WINDOW_MARGIN_M: f64 = 150.0;
+
+/// Most waypoints a route may have. Rover routes have tens to hundreds; every waypoint costs a
+/// passage search when a scenario is loaded and a leg in every run (issue 26: 100 000 took 5
+/// minutes).
+pub const MAX_WAYPOINTS: usize = 10_000;
+
+/// Most grid cells the passage searches of one route may cover together
+/// ([`leg_search_cells`]). Measured (issue 26, one core): 2000 legs through the sol 383-386
+/// passage, each needing the full search (2.8e8 cells), load in 16 s; legs through open ground
+/// take a fraction of that, and a second core halves it.
+pub const MAX_LEG_SEARCH_CELLS: u64 = 300_000_000;
+
 /// Per-leg passage clearance of the route (independent of strategy).
 ///
 /// Leg `i` runs from waypoint `i − 1` to waypoint `i`; its clearance is the largest uncertainty
 /// radius at which a path between them still exists (a maximin path over cell clearance, slope
-/// hazards excluded), searched within a window around the leg.
+/// hazards excluded), searched within [`LEG_WINDOW_MARGIN_M`] of the leg's box. The legs are
+/// searched in parallel; the result does not depend on the thread count.
 #[must_use]
 pub fn leg_clearances(c: &Campaign) -> Vec<LegClearance> {
+    leg_clearances_observed(c, &|| {})
+}
+
+/// [`leg_clearances`], calling `on_leg` as each leg is done (from any thread; for a progress
+/// bar).
+#[must_use]
+pub fn leg_clearances_observed(c: &Campaign, on_leg: &(dyn Fn() + Sync)) -> Vec<LegClearance> {
+    use rayon::prelude::*;
     let g = &c.grid;
-    let window_margin_cells = (150.0 / g.geo.resolution_m_per_px).ceil() as usize;
-    let mut leg_start_m = 0.0;
+    // Where each leg starts along the route, summed in order before the parallel part.
+    let lengths: Vec<f64> = c
+        .route
+        .windows(2)
+        .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
+        .collect();
+    let starts_m: Vec<f64> = lengths
+        .iter()
+        .scan(0.0, |at, l| {
+            let start = *at;
+            *at += l;
+            Some(start)
+        })
+        .collect();
     (1..c.route.len())
+        .into_par_iter()
         .map(|i| {
             let (p, q) = (c.route[i - 1], c.route[i]);
-            let ends = (g.cell_of(p), g.cell_of(q));
-            let bottleneck = match ends {
-                (Some(a), Some(b)) => {
-                    let (ca, ra, cb, rb) = (a % g.width, a / g.width, b % g.width, b / g.width);
-                    let window = (
-                        ca.min(cb).saturating_sub(window_margin_cells),
-                        ra.min(rb).saturating_sub(window_margin_cells),
-                        (ca.max(cb) + window_margin_cells).min(g.width - 1),
-                        (ra.max(rb) + window_margin_cells).min(g.height - 1),
-                    );
-                    widest_path_bottleneck(
-                        g.width,
-                        g.height,
-                        &g.clearance_m,
-                        |k| !g.hazard[k],
-                        a,
-                        b,
-                        Some(window),
-                    )
-                }
+            let bottleneck = match (g.cell_of(p), g.cell_of(q)) {
+                (Some(a), Some(b)) => widest_path_bottleneck(
+                    g.width,
+                    g.height,
+                    &g.clearance_m,
+                    |k| !g.hazard[k],
+                    a,
+                    b,
+                    Some(leg_window(g, a, b)),
+                ),
                 _ => None,
             };
             let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
-            let length_m = dx.hypot(dy);
+            let (length_m, leg_start_m) = (lengths[i - 1], starts_m[i - 1]);
             let leg = LegClearance {
                 to_waypoint: i,
                 clearance_m: bottleneck.map(|b| f64::from(b.clearance)),
@@ -114,10 +140,39 @@ pub fn leg_clearances(c: &Campaign) -> Vec<LegClearance> {
                 }),
                 narrowest_m: bottleneck.map(|b| g.center_of(b.narrowest_cell)),
             };
-            leg_start_m += length_m;
+            on_leg();
             leg
         })
         .collect()
+}
+
+/// The window `(col0, row0, col1, row1)` [`leg_clearances`] searches for the leg between cells
+/// `a` and `b`: their box grown by [`LEG_WINDOW_MARGIN_M`], clipped to the grid.
+fn leg_window(g: &PlanningGrid, a: usize, b: usize) -> (usize, usize, usize, usize) {
+    let margin = (LEG_WINDOW_MARGIN_M / g.geo.resolution_m_per_px).ceil() as usize;
+    let (ca, ra, cb, rb) = (a % g.width, a / g.width, b % g.width, b / g.width);
+    (
+        ca.min(cb).saturating_sub(margin),
+        ra.min(rb).saturating_sub(margin),
+        (ca.max(cb) + margin).min(g.width - 1),
+        (ra.max(rb) + margin).min(g.height - 1),
+    )
+}
+
+/// Cells [`leg_clearances`] may search over the whole route, at most: the sum of its legs'
+/// windows (legs with an end off the grid count nothing). The time of [`leg_clearances`] is
+/// about proportional to it in the worst case, so a scenario can be refused from it before the
+/// search runs.
+#[must_use]
+pub fn leg_search_cells(grid: &PlanningGrid, route: &[[f64; 2]]) -> u64 {
+    route
+        .windows(2)
+        .filter_map(|w| Some((grid.cell_of(w[0])?, grid.cell_of(w[1])?)))
+        .map(|(a, b)| {
+            let (c0, r0, c1, r1) = leg_window(grid, a, b);
+            ((c1 - c0 + 1) as u64).saturating_mul((r1 - r0 + 1) as u64)
+        })
+        .fold(0u64, u64::saturating_add)
 }
 
 /// Run `strategy` over the campaign. `legs` comes from [`leg_clearances`].

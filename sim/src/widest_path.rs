@@ -32,23 +32,42 @@
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
-/// One open-set entry: bottleneck value so far and the window-local cell index.
-#[derive(Debug, Clone, Copy)]
+/// One open-set entry: bottleneck value so far, the cell's own clearance and its window-local
+/// index. Among equal bottlenecks the roomier cell pops first, so the search tree (and the
+/// bottleneck's reported place) does not hug obstacles past a pinch; then the lower index.
+/// Both clearances are packed into one integer in the order of `f32::total_cmp`, so the heap
+/// compares once where it compared twice (the heap is most of the search's time).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 struct Open {
-    value: f32,
-    /// The cell's own clearance: among equal bottlenecks the roomier cell pops first, so the
-    /// search tree (and the bottleneck's reported place) does not hug obstacles past a pinch.
-    own: f32,
+    /// `ordered(value) << 32 | ordered(own)`.
+    key: u64,
     local: u32,
 }
 
-impl PartialEq for Open {
-    fn eq(&self, other: &Self) -> bool {
-        self.cmp(other) == Ordering::Equal
+impl Open {
+    fn new(value: f32, own: f32, local: u32) -> Self {
+        Self {
+            key: (u64::from(ordered(value)) << 32) | u64::from(ordered(own)),
+            local,
+        }
+    }
+
+    /// The bottleneck value.
+    fn value(self) -> f32 {
+        from_ordered((self.key >> 32) as u32)
     }
 }
 
-impl Eq for Open {}
+/// `f32` bits as an unsigned integer in the order of `f32::total_cmp`.
+fn ordered(v: f32) -> u32 {
+    let b = v.to_bits();
+    if b >> 31 == 1 { !b } else { b | 0x8000_0000 }
+}
+
+/// The inverse of [`ordered`].
+fn from_ordered(o: u32) -> f32 {
+    f32::from_bits(if o >> 31 == 1 { o & 0x7fff_ffff } else { !o })
+}
 
 impl PartialOrd for Open {
     fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
@@ -59,9 +78,8 @@ impl PartialOrd for Open {
 impl Ord for Open {
     /// Larger value pops first, then the roomier cell, then lower index.
     fn cmp(&self, other: &Self) -> Ordering {
-        self.value
-            .total_cmp(&other.value)
-            .then_with(|| self.own.total_cmp(&other.own))
+        self.key
+            .cmp(&other.key)
             .then_with(|| other.local.cmp(&self.local))
     }
 }
@@ -113,10 +131,172 @@ pub fn widest_path(
 /// on that path must keep its uncertainty radius below the value until it is past that cell
 /// (the passage-aware planning of [`crate::policy`] uses it).
 ///
+/// The answer can never exceed the goal's own clearance. When the start is at least as roomy
+/// as the goal and a path stays at or above the goal's clearance, the goal is the bottleneck
+/// and the search returns it as soon as a goal-directed walk over those cells arrives (in open
+/// ground, about the leg's length in cells) instead of expanding every cell that ties with
+/// it: the same answer, cell included, as the full search ([`dijkstra_bottleneck`], the
+/// reference the tests hold it to), which runs otherwise.
+///
 /// # Panics
 /// As [`widest_path`].
 #[must_use]
 pub fn widest_path_bottleneck(
+    width: usize,
+    height: usize,
+    clearance: &[f32],
+    passable: impl Fn(usize) -> bool,
+    start: usize,
+    goal: usize,
+    window: Option<(usize, usize, usize, usize)>,
+) -> Option<Bottleneck> {
+    let passable = &passable;
+    if let Some(w) = Window::new(width, height, clearance, start, goal, window)
+        && !clearance[goal].is_nan()
+        && clearance[goal] <= clearance[start]
+        && reachable_at(&w, clearance, passable, start, goal, clearance[goal])
+    {
+        return Some(Bottleneck {
+            clearance: clearance[goal],
+            narrowest_cell: goal,
+        });
+    }
+    dijkstra_bottleneck(width, height, clearance, passable, start, goal, window)
+}
+
+/// The search window of [`widest_path_bottleneck`], clipped to the grid, holding both ends.
+struct Window {
+    width: usize,
+    col0: usize,
+    row0: usize,
+    win_w: usize,
+    win_h: usize,
+}
+
+impl Window {
+    /// `None` for an empty window or one without `start` and `goal`.
+    ///
+    /// # Panics
+    /// As [`widest_path`].
+    fn new(
+        width: usize,
+        height: usize,
+        clearance: &[f32],
+        start: usize,
+        goal: usize,
+        window: Option<(usize, usize, usize, usize)>,
+    ) -> Option<Self> {
+        assert_eq!(
+            clearance.len(),
+            width * height,
+            "clearance length must be width * height ({width} * {height})"
+        );
+        assert!(
+            start < clearance.len() && goal < clearance.len(),
+            "start {start} or goal {goal} outside the {width}×{height} grid"
+        );
+        let (col0, row0, col1, row1) = match window {
+            None => (0, 0, width - 1, height - 1),
+            Some((c0, r0, c1, r1)) => (c0, r0, c1.min(width - 1), r1.min(height - 1)),
+        };
+        if col0 > col1 || row0 > row1 {
+            return None;
+        }
+        let inside = |i: usize| {
+            let (r, c) = (i / width, i % width);
+            (row0..=row1).contains(&r) && (col0..=col1).contains(&c)
+        };
+        (inside(start) && inside(goal)).then_some(Self {
+            width,
+            col0,
+            row0,
+            win_w: col1 - col0 + 1,
+            win_h: row1 - row0 + 1,
+        })
+    }
+
+    /// Window-local index of grid cell `i` (inside the window).
+    fn local(&self, i: usize) -> usize {
+        (i / self.width - self.row0) * self.win_w + (i % self.width - self.col0)
+    }
+
+    /// Grid index of window-local cell `l`.
+    fn global(&self, l: usize) -> usize {
+        (self.row0 + l / self.win_w) * self.width + self.col0 + l % self.win_w
+    }
+}
+
+/// Whether a path of moves whose bottleneck is at least `t` (cells, and a diagonal's two
+/// corners, of clearance `≥ t`, usable, in the window) joins `start` to `goal`: a depth-first
+/// walk that tries the neighbour nearest the goal first, so in open ground it goes about
+/// straight there.
+fn reachable_at(
+    w: &Window,
+    clearance: &[f32],
+    passable: &impl Fn(usize) -> bool,
+    start: usize,
+    goal: usize,
+    t: f32,
+) -> bool {
+    let open = |l: usize| {
+        let i = w.global(l);
+        clearance[i] >= t && passable(i)
+    };
+    if !open(w.local(start)) || !open(w.local(goal)) {
+        return false;
+    }
+    let goal_l = w.local(goal);
+    let (goal_r, goal_c) = ((goal_l / w.win_w) as i64, (goal_l % w.win_w) as i64);
+    let mut seen = vec![false; w.win_w * w.win_h];
+    let mut stack = vec![w.local(start)];
+    seen[w.local(start)] = true;
+    let mut next: Vec<(i64, usize)> = Vec::with_capacity(8);
+    while let Some(cur) = stack.pop() {
+        if cur == goal_l {
+            return true;
+        }
+        let (r, c) = ((cur / w.win_w) as i64, (cur % w.win_w) as i64);
+        let at = |dr: i64, dc: i64| -> Option<usize> {
+            let (rr, cc) = (r + dr, c + dc);
+            (rr >= 0 && cc >= 0 && rr < w.win_h as i64 && cc < w.win_w as i64)
+                .then(|| rr as usize * w.win_w + cc as usize)
+                .filter(|&l| open(l))
+        };
+        let (up, down, left, right) = (at(-1, 0), at(1, 0), at(0, -1), at(0, 1));
+        next.clear();
+        for (dr, dc, cell) in [
+            (-1, 0, up),
+            (1, 0, down),
+            (0, -1, left),
+            (0, 1, right),
+            (-1, -1, up.and(left).and_then(|_| at(-1, -1))),
+            (-1, 1, up.and(right).and_then(|_| at(-1, 1))),
+            (1, -1, down.and(left).and_then(|_| at(1, -1))),
+            (1, 1, down.and(right).and_then(|_| at(1, 1))),
+        ] {
+            if let Some(l) = cell
+                && !seen[l]
+            {
+                let (dy, dx) = ((r + dr - goal_r).abs(), (c + dc - goal_c).abs());
+                next.push((dy.max(dx) * 3 + dy.min(dx), l));
+            }
+        }
+        // Farthest pushed first, so the nearest is tried next.
+        next.sort_unstable_by(|a, b| b.cmp(a));
+        for &(_, l) in &next {
+            seen[l] = true;
+            stack.push(l);
+        }
+    }
+    false
+}
+
+/// [`widest_path_bottleneck`] by Dijkstra's search alone (module docs): the reference.
+///
+/// # Panics
+/// As [`widest_path`].
+#[must_use]
+pub fn dijkstra_bottleneck(
     width: usize,
     height: usize,
     clearance: &[f32],
@@ -179,13 +359,13 @@ pub fn widest_path_bottleneck(
     let mut heap = BinaryHeap::new();
     best[start_l] = clearance[start];
     state[start_l] = REACHED;
-    heap.push(Open {
-        value: clearance[start],
-        own: clearance[start],
-        local: start_l as u32,
-    });
-    while let Some(Open { value, local, .. }) = heap.pop() {
-        let cur = local as usize;
+    heap.push(Open::new(
+        clearance[start],
+        clearance[start],
+        start_l as u32,
+    ));
+    while let Some(open) = heap.pop() {
+        let (value, cur) = (open.value(), open.local as usize);
         if state[cur] == CLOSED {
             continue;
         }
@@ -246,11 +426,7 @@ pub fn widest_path_bottleneck(
                 best[nb] = v;
                 parent[nb] = cur as u32;
                 via[nb] = step;
-                heap.push(Open {
-                    value: v,
-                    own: clearance[global(nb)],
-                    local: nb as u32,
-                });
+                heap.push(Open::new(v, clearance[global(nb)], nb as u32));
             }
         }
     }
@@ -393,6 +569,65 @@ mod tests {
             found += usize::from(got.is_some());
         }
         assert!(found > 100, "too few connected cases: {found}");
+    }
+
+    #[test]
+    fn the_goal_directed_shortcut_gives_the_reference_answer_and_cell() {
+        let mut rng = ChaCha8Rng::seed_from_u64(26);
+        let mut shortcut = 0;
+        for trial in 0..3000 {
+            let width = rng.random_range(1..=24);
+            let height = rng.random_range(1..=24);
+            let n = width * height;
+            // Few distinct values (ties everywhere, as on a planning grid) or continuous ones.
+            let levels = rng.random_range(1..6);
+            let discrete = rng.random_bool(0.7);
+            let clearance: Vec<f32> = (0..n)
+                .map(|_| {
+                    if discrete {
+                        rng.random_range(0..levels) as f32
+                    } else {
+                        rng.random_range(-1.0..10.0)
+                    }
+                })
+                .collect();
+            let blocked = rng.random_range(0.0..0.3);
+            let passable: Vec<bool> = (0..n).map(|_| !rng.random_bool(blocked)).collect();
+            let window = if rng.random_bool(0.3) {
+                let (ca, cb) = (rng.random_range(0..width), rng.random_range(0..width));
+                let (ra, rb) = (rng.random_range(0..height), rng.random_range(0..height));
+                Some((ca.min(cb), ra.min(rb), ca.max(cb), ra.max(rb)))
+            } else {
+                None
+            };
+            let (start, goal) = (rng.random_range(0..n), rng.random_range(0..n));
+            let open = |i: usize| passable[i];
+            let got = widest_path_bottleneck(width, height, &clearance, open, start, goal, window);
+            let want = dijkstra_bottleneck(width, height, &clearance, open, start, goal, window);
+            assert_eq!(got, want, "trial {trial}");
+            shortcut += usize::from(got.is_some_and(|b| b.narrowest_cell == goal));
+        }
+        assert!(shortcut > 500, "the shortcut case too rare: {shortcut}");
+    }
+
+    #[test]
+    fn packed_keys_keep_the_order_of_total_cmp() {
+        let values = [
+            f32::NEG_INFINITY,
+            -3.5,
+            -0.0,
+            0.0,
+            1e-40,
+            2.25,
+            f32::INFINITY,
+            f32::NAN,
+        ];
+        for a in values {
+            assert_eq!(from_ordered(ordered(a)).to_bits(), a.to_bits());
+            for b in values {
+                assert_eq!(ordered(a).cmp(&ordered(b)), a.total_cmp(&b), "{a} {b}");
+            }
+        }
     }
 
     #[test]

@@ -223,6 +223,41 @@ fn validate(path: &Path, recipe: RawRecipe, budget: MemoryBudget) -> Result<Reci
             "metres",
         )?;
     }
+    // Generation time: refused from the landforms' evaluations before any pixel is made,
+    // naming the field that asks for the most of them.
+    let evaluations = maps::procedural::landform_evaluations(t);
+    if evaluations > maps::procedural::MAX_LANDFORM_EVALUATIONS {
+        let sane = t.sanitized();
+        let px = (t.width_px as u64).saturating_mul(t.height_px as u64);
+        let per_px = |n: usize| px.saturating_mul(n as u64);
+        let others = [
+            ("terrain.ridge_count", per_px(sane.ridge_count)),
+            ("terrain.dune_fields", per_px(sane.dune_fields.len())),
+            ("terrain.sand_patches", per_px(sane.sand_patches.len())),
+        ];
+        let craters = others
+            .iter()
+            .fold(evaluations, |e, o| e.saturating_sub(o.1));
+        let (field, _) =
+            others
+                .into_iter()
+                .fold(("terrain.crater_density_per_km2", craters), |a, b| {
+                    if b.1 > a.1 { b } else { a }
+                });
+        return Err(c.err(
+            field,
+            format!(
+                "landforms that generate in bounded time: at most {:e} evaluations of a crater, \
+                 ridge, dune field or sand patch at a pixel (craters count at every pixel their \
+                 ejecta reaches, 3 radii)",
+                maps::procedural::MAX_LANDFORM_EVALUATIONS as f64
+            ),
+            format!(
+                "{:.3e} evaluations over {} × {} px",
+                evaluations as f64, t.width_px, t.height_px
+            ),
+        ));
+    }
     let crs = match &recipe.georeference {
         None => MapCrs::Local,
         Some(a) => {

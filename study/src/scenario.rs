@@ -835,11 +835,14 @@ impl ScenarioSpec {
             dem_datum_m: raw.map.dem_datum_m,
             georef,
         };
-        if raw.route.waypoints.len() < 2 {
+        if !(2..=campaign::MAX_WAYPOINTS).contains(&raw.route.waypoints.len()) {
             return Err(ScenarioError::field(
                 path,
                 "route.waypoints",
-                "at least two waypoints (the start and a goal)",
+                format!(
+                    "2 ..= {} waypoints (the start and a goal at least)",
+                    campaign::MAX_WAYPOINTS
+                ),
                 raw.route.waypoints.len(),
             ));
         }
@@ -992,7 +995,20 @@ impl Scenario {
     /// with its first [`crate::sanity::Severity::Error`]; [`Scenario::inspect_within`] lists
     /// them all.
     pub fn load_within(path: &Path, budget: MemoryBudget) -> Result<Self, ScenarioError> {
-        let (scenario, findings) = Self::inspect_within(path, budget)?;
+        Self::load_observed(path, budget, &|_, _| {})
+    }
+
+    /// [`Scenario::load_within`] with progress over the route's legs, as
+    /// [`Scenario::inspect_observed`].
+    ///
+    /// # Errors
+    /// As [`Scenario::load_within`].
+    pub fn load_observed(
+        path: &Path,
+        budget: MemoryBudget,
+        on_leg: &(dyn Fn(u64, u64) + Sync),
+    ) -> Result<Self, ScenarioError> {
+        let (scenario, findings) = Self::inspect_observed(path, budget, on_leg)?;
         match findings
             .iter()
             .find(|f| f.severity == crate::sanity::Severity::Error)
@@ -1013,7 +1029,21 @@ impl Scenario {
         path: &Path,
         budget: MemoryBudget,
     ) -> Result<(Self, Vec<crate::sanity::Finding>), ScenarioError> {
-        let scenario = Self::build(ScenarioSpec::load(path)?, budget)?;
+        Self::inspect_observed(path, budget, &|_, _| {})
+    }
+
+    /// [`Scenario::inspect_within`], calling `on_leg(done, total)` as the route's passage
+    /// clearances are searched, leg by leg (the long part of loading a long route; from any
+    /// thread).
+    ///
+    /// # Errors
+    /// As [`Scenario::inspect_within`].
+    pub fn inspect_observed(
+        path: &Path,
+        budget: MemoryBudget,
+        on_leg: &(dyn Fn(u64, u64) + Sync),
+    ) -> Result<(Self, Vec<crate::sanity::Finding>), ScenarioError> {
+        let scenario = Self::build_observed(ScenarioSpec::load(path)?, budget, on_leg)?;
         let findings = crate::sanity::findings(&scenario);
         Ok((scenario, findings))
     }
@@ -1024,6 +1054,18 @@ impl Scenario {
     /// # Errors
     /// A [`ScenarioError`] naming the file and the field at fault.
     pub fn build(spec: ScenarioSpec, budget: MemoryBudget) -> Result<Self, ScenarioError> {
+        Self::build_observed(spec, budget, &|_, _| {})
+    }
+
+    /// [`Scenario::build`] with progress over the legs, as [`Scenario::inspect_observed`].
+    ///
+    /// # Errors
+    /// As [`Scenario::build`].
+    pub fn build_observed(
+        spec: ScenarioSpec,
+        budget: MemoryBudget,
+        on_leg: &(dyn Fn(u64, u64) + Sync),
+    ) -> Result<Self, ScenarioError> {
         let path = spec.path.as_path();
         let m = &spec.map;
         let map_error = |field: &str, source: maps::RasterError| ScenarioError::Map {
@@ -1130,17 +1172,22 @@ impl Scenario {
                 .map_err(|e| map_error("map.appearance", e))?,
         };
         let (x0, y0, x1, y1) = layers.dem.extent_m();
+        let mut total = total;
         if dem_extent_m.is_none() {
             // A DEM placed by neither the scenario nor its own tags: its grid is known only now.
             let extent_m = [x1 - x0, y1 - y0];
-            let total = total.saturating_add(grid_bytes(extent_m).1);
+            total = total.saturating_add(grid_bytes(extent_m).1);
             if !budget.allows(total) {
                 return Err(grid_error(extent_m, total));
             }
         }
-        let zones = ZoneSet::load(&m.zones).map_err(|source| ScenarioError::Zones {
-            path: path.to_path_buf(),
-            source: Box::new(source),
+        // The zones' geometry counts too: refused from its vertex and polygon counts, before
+        // it is converted, if it does not fit beside the maps and grid.
+        let zones = ZoneSet::load_within(&m.zones, budget, total).map_err(|source| {
+            ScenarioError::Zones {
+                path: path.to_path_buf(),
+                source: Box::new(source),
+            }
         })?;
 
         let extent = format!("x {x0:.1}..{x1:.1} m, y {y0:.1}..{y1:.1} m");
@@ -1237,7 +1284,32 @@ impl Scenario {
                 path: path.to_path_buf(),
                 source,
             })?;
-        let legs = campaign::leg_clearances(&campaign);
+        // The leg searches' time grows with the cells of their windows: refused over the cap
+        // before they run.
+        let search_cells = campaign::leg_search_cells(&campaign.grid, &campaign.route);
+        if search_cells > campaign::MAX_LEG_SEARCH_CELLS {
+            return Err(ScenarioError::field(
+                path,
+                "route.waypoints",
+                format!(
+                    "a route whose legs' passage searches (each leg's box and {} m around it) \
+                     cover at most {} grid cells together",
+                    campaign::LEG_WINDOW_MARGIN_M,
+                    campaign::MAX_LEG_SEARCH_CELLS
+                ),
+                format!(
+                    "{} legs covering {search_cells} cells of {} m",
+                    campaign.route.len() - 1,
+                    campaign.grid.geo.resolution_m_per_px
+                ),
+            ));
+        }
+        let legs_total = (campaign.route.len() - 1) as u64;
+        let legs_done = std::sync::atomic::AtomicU64::new(0);
+        let legs = campaign::leg_clearances_observed(&campaign, &|| {
+            let done = legs_done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+            on_leg(done, legs_total);
+        });
         Ok(Scenario {
             path: spec.path,
             name: spec.name,

@@ -59,6 +59,65 @@ impl Crater {
     }
 }
 
+/// The craters of `p` (sanitised): over the map plus a margin, so edge craters are cut, not
+/// missing; at most [`MAX_CRATERS`].
+fn draw_craters(p: &TerrainParams) -> Vec<Crater> {
+    let res = p.geo.resolution_m_per_px;
+    let [ox, oy] = p.geo.origin_m;
+    let (width_m, height_m) = (p.width_px as f64 * res, p.height_px as f64 * res);
+    let r_min = p.crater_radius_min_m.max(0.01);
+    let r_max = p.crater_radius_max_m.max(r_min);
+    let margin = EJECTA_REACH * r_max;
+    let (area_w, area_h) = (width_m + 2.0 * margin, height_m + 2.0 * margin);
+    let mut rng = ChaCha8Rng::seed_from_u64(p.seed);
+    let expected = p.crater_density_per_km2.max(0.0) * area_w * area_h * 1e-6;
+    let n =
+        (expected.floor() + f64::from(u8::from(rng.random::<f64>() < expected.fract()))) as usize;
+    (0..n.min(MAX_CRATERS))
+        .map(|_| {
+            let x_m = ox - margin + rng.random::<f64>() * area_w;
+            let y_m = oy + margin - rng.random::<f64>() * area_h;
+            // Truncated power law, cumulative N(>r) ∝ r⁻²: many small, few large.
+            let u: f64 = rng.random();
+            let k = 1.0 - (r_min / r_max).powi(2);
+            let radius_m = r_min / (1.0 - u * k).sqrt();
+            // Depth/diameter from 0.2 (fresh) down to 0.08 (degraded); rim ≈ 0.2 × depth.
+            let depth_m = (0.08 + 0.12 * rng.random::<f64>()) * 2.0 * radius_m;
+            Crater {
+                x_m,
+                y_m,
+                radius_m,
+                depth_m,
+                rim_m: 0.2 * depth_m,
+            }
+        })
+        .collect()
+}
+
+/// The bins (columns, rows) crater `c` reaches on the map of `p`, or `None` off the map.
+fn crater_bins(
+    p: &TerrainParams,
+    c: &Crater,
+) -> Option<(
+    std::ops::RangeInclusive<usize>,
+    std::ops::RangeInclusive<usize>,
+)> {
+    let (w, h) = (p.width_px, p.height_px);
+    let bins_x = w.div_ceil(BIN_PX).max(1);
+    let bins_y = h.div_ceil(BIN_PX).max(1);
+    let reach = EJECTA_REACH * c.radius_m;
+    let (c0, r0) = p.geo.pixel_of(c.x_m - reach, c.y_m + reach);
+    let (c1, r1) = p.geo.pixel_of(c.x_m + reach, c.y_m - reach);
+    let to_bin = |v: f64, n: usize| ((v.max(0.0) / BIN_PX as f64) as usize).min(n - 1);
+    if c1 < 0.0 || r1 < 0.0 || c0 > w as f64 || r0 > h as f64 {
+        return None;
+    }
+    Some((
+        to_bin(c0, bins_x)..=to_bin(c1, bins_x),
+        to_bin(r0, bins_y)..=to_bin(r1, bins_y),
+    ))
+}
+
 /// A long linear ridge with a smooth cross-section, tapered ends and a wandering crest.
 #[derive(Clone, Debug)]
 struct Ridge {
@@ -162,49 +221,16 @@ impl Landforms {
         let [ox, oy] = p.geo.origin_m;
         let (width_m, height_m) = (w as f64 * res, h as f64 * res);
 
-        // Craters over the map plus a margin, so edge craters are cut, not missing.
-        let r_min = p.crater_radius_min_m.max(0.01);
-        let r_max = p.crater_radius_max_m.max(r_min);
-        let margin = EJECTA_REACH * r_max;
-        let (area_w, area_h) = (width_m + 2.0 * margin, height_m + 2.0 * margin);
-        let mut rng = ChaCha8Rng::seed_from_u64(p.seed);
-        let expected = p.crater_density_per_km2.max(0.0) * area_w * area_h * 1e-6;
-        let n = (expected.floor() + f64::from(u8::from(rng.random::<f64>() < expected.fract())))
-            as usize;
-        let craters: Vec<Crater> = (0..n.min(MAX_CRATERS))
-            .map(|_| {
-                let x_m = ox - margin + rng.random::<f64>() * area_w;
-                let y_m = oy + margin - rng.random::<f64>() * area_h;
-                // Truncated power law, cumulative N(>r) ∝ r⁻²: many small, few large.
-                let u: f64 = rng.random();
-                let k = 1.0 - (r_min / r_max).powi(2);
-                let radius_m = r_min / (1.0 - u * k).sqrt();
-                // Depth/diameter from 0.2 (fresh) down to 0.08 (degraded); rim ≈ 0.2 × depth.
-                let depth_m = (0.08 + 0.12 * rng.random::<f64>()) * 2.0 * radius_m;
-                Crater {
-                    x_m,
-                    y_m,
-                    radius_m,
-                    depth_m,
-                    rim_m: 0.2 * depth_m,
-                }
-            })
-            .collect();
-
+        let craters = draw_craters(p);
         let bins_x = w.div_ceil(BIN_PX).max(1);
         let bins_y = h.div_ceil(BIN_PX).max(1);
         let mut bins: Vec<Vec<u32>> = vec![Vec::new(); bins_x * bins_y];
         for (i, c) in craters.iter().enumerate() {
-            let reach = EJECTA_REACH * c.radius_m;
-            let (c0, r0) = p.geo.pixel_of(c.x_m - reach, c.y_m + reach);
-            let (c1, r1) = p.geo.pixel_of(c.x_m + reach, c.y_m - reach);
-            let to_bin = |v: f64, n: usize| ((v.max(0.0) / BIN_PX as f64) as usize).min(n - 1);
-            if c1 < 0.0 || r1 < 0.0 || c0 > w as f64 || r0 > h as f64 {
-                continue;
-            }
-            for by in to_bin(r0, bins_y)..=to_bin(r1, bins_y) {
-                for bx in to_bin(c0, bins_x)..=to_bin(c1, bins_x) {
-                    bins[by * bins_x + bx].push(i as u32);
+            if let Some((bx, by)) = crater_bins(p, c) {
+                for by in by {
+                    for bx in bx.clone() {
+                        bins[by * bins_x + bx].push(i as u32);
+                    }
                 }
             }
         }
@@ -337,6 +363,29 @@ impl Landforms {
         }
     }
 
+    /// Evaluations of a landform at a pixel the DEM pass makes for `p` (sanitised): each
+    /// crater at every pixel of the bins it reaches, each ridge, dune field and sand patch at
+    /// every pixel. The pass's time is about proportional to it.
+    pub(super) fn evaluations(p: &TerrainParams) -> u64 {
+        let (w, h) = (p.width_px as u64, p.height_px as u64);
+        let bin_px = BIN_PX as u64;
+        // Pixels of bins `from..to` along a side of `n` pixels (the last bin may be short).
+        let span = |bins: std::ops::RangeInclusive<usize>, n: u64| {
+            let (a, b) = (
+                *bins.start() as u64 * bin_px,
+                (*bins.end() as u64 + 1) * bin_px,
+            );
+            b.min(n).saturating_sub(a)
+        };
+        let craters = draw_craters(p)
+            .iter()
+            .filter_map(|c| crater_bins(p, c))
+            .map(|(bx, by)| span(bx, w).saturating_mul(span(by, h)))
+            .fold(0u64, u64::saturating_add);
+        let others = (p.ridge_count + p.dune_fields.len() + p.sand_patches.len()) as u64;
+        craters.saturating_add(w.saturating_mul(h).saturating_mul(others))
+    }
+
     #[cfg(test)]
     /// Number of craters drawn (including those only partly on the map).
     pub(super) fn crater_count(&self) -> usize {
@@ -402,5 +451,31 @@ mod tests {
                 .collect::<Vec<_>>()
         };
         assert_eq!(ridge(&base), ridge(&dense));
+    }
+
+    #[test]
+    fn evaluations_are_the_work_of_the_bins_and_the_other_landforms() {
+        // 1000 × 700 px: the last bins are short on both sides.
+        let p = TerrainParams {
+            width_px: 1000,
+            height_px: 700,
+            crater_density_per_km2: 200.0,
+            crater_radius_max_m: 90.0,
+            ridge_count: 4,
+            sand_patches: vec![([10.0, 10.0], 5.0)],
+            ..TerrainParams::default()
+        }
+        .sanitized();
+        let l = Landforms::new(&p);
+        let mut want = 0u64;
+        for row in 0..p.height_px {
+            for col in 0..p.width_px {
+                let bin = l.bins_x * (row / BIN_PX) + col / BIN_PX;
+                want += u64::from(l.bin_start[bin + 1] - l.bin_start[bin]);
+            }
+        }
+        want += 1000 * 700 * 5;
+        assert_eq!(Landforms::evaluations(&p), want);
+        assert!(want > 1000 * 700 * 6, "the craters count too: {want}");
     }
 }

@@ -236,6 +236,54 @@ pub enum ZoneError {
         vertices: usize,
     },
 
+    /// The polygons have more vertices together than [`crate::zone::MAX_ZONE_VERTICES`].
+    #[error(
+        "{}: features: expected at most {} vertices in all polygons together, got {vertices}",
+        path.display(), crate::zone::MAX_ZONE_VERTICES
+    )]
+    TooManyVertices {
+        /// The zones file.
+        path: PathBuf,
+        /// How many there are (closing positions included).
+        vertices: usize,
+    },
+
+    /// The file has more polygons than [`crate::zone::MAX_ZONE_POLYGONS`].
+    #[error(
+        "{}: features: expected at most {} polygons in all zones together, got {polygons}",
+        path.display(), crate::zone::MAX_ZONE_POLYGONS
+    )]
+    TooManyPolygons {
+        /// The zones file.
+        path: PathBuf,
+        /// How many there are (each part of a MultiPolygon counts).
+        polygons: usize,
+    },
+
+    /// The zones' geometry ([`crate::ZoneSet::memory_bytes`]) does not fit the memory budget
+    /// beside what the command already holds.
+    #[error(
+        "{}: features: expected zones whose geometry fits the memory budget of {} (--memory-budget-mib) beside the {} the maps and planning grid hold, got {vertices} vertices in {polygons} polygons, which need {}",
+        path.display(),
+        crate::input_file::human_bytes(budget.limit_bytes),
+        crate::input_file::human_bytes(*held_bytes),
+        crate::input_file::human_bytes(*need_bytes)
+    )]
+    OverBudget {
+        /// The zones file.
+        path: PathBuf,
+        /// Polygons in the file.
+        polygons: usize,
+        /// Vertices in the file.
+        vertices: usize,
+        /// What the zones need, bytes.
+        need_bytes: u64,
+        /// What the command already holds, bytes.
+        held_bytes: u64,
+        /// The budget.
+        budget: crate::MemoryBudget,
+    },
+
     /// A position is not two numbers: fewer, or a third (an altitude, which zones do not use).
     #[error(
         "{}: features[{feature}] ({}).{field}: position has {len} number(s); expected [x, y] in metres (no altitude)",

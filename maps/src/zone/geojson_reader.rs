@@ -21,8 +21,13 @@ pub(super) struct ZoneRecord {
     pub polygons: Vec<Vec<Vec<P>>>,
 }
 
-/// Parse and validate every feature of a zones FeatureCollection.
-pub(super) fn read_zones(text: &str, path: &Path) -> Result<Vec<ZoneRecord>, ZoneError> {
+/// Parse and validate every feature of a zones FeatureCollection; `check` sees the number of
+/// polygons and of vertices of all features before any is converted or validated.
+pub(super) fn read_zones(
+    text: &str,
+    path: &Path,
+    check: &dyn Fn(usize, usize) -> Result<(), ZoneError>,
+) -> Result<Vec<ZoneRecord>, ZoneError> {
     let text = quote_non_finite_literals(text);
     let root: Value = serde_json::from_str(&text).map_err(|error| ZoneError::InvalidJson {
         path: path.to_owned(),
@@ -59,6 +64,13 @@ pub(super) fn read_zones(text: &str, path: &Path) -> Result<Vec<ZoneRecord>, Zon
             count: features.len(),
         });
     }
+    let (polygons, vertices) = features
+        .iter()
+        .map(count_geometry)
+        .fold((0usize, 0usize), |(p, v), (dp, dv)| {
+            (p.saturating_add(dp), v.saturating_add(dv))
+        });
+    check(polygons, vertices)?;
     features
         .into_iter()
         .enumerate()
@@ -75,6 +87,25 @@ fn kind_of(value: &Value) -> &'static str {
         Value::String(_) => "a string",
         Value::Array(_) => "an array",
         Value::Object(_) => "an object",
+    }
+}
+
+/// Polygons and positions of one feature's `Polygon` or `MultiPolygon`, counted in the JSON
+/// (anything else counts nothing: reading the feature says what is wrong with it).
+fn count_geometry(feature: &Value) -> (usize, usize) {
+    let Some(geometry) = feature.get("geometry") else {
+        return (0, 0);
+    };
+    let coordinates = geometry.get("coordinates").and_then(Value::as_array);
+    let positions = |polygon: &Value| -> usize {
+        polygon.as_array().map_or(0, |rings| {
+            rings.iter().map(|r| r.as_array().map_or(0, Vec::len)).sum()
+        })
+    };
+    match (geometry.get("type").and_then(Value::as_str), coordinates) {
+        (Some("Polygon"), Some(_)) => (1, positions(&geometry["coordinates"])),
+        (Some("MultiPolygon"), Some(parts)) => (parts.len(), parts.iter().map(positions).sum()),
+        _ => (0, 0),
     }
 }
 
