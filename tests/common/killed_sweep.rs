@@ -99,6 +99,7 @@ impl Fixture {
     pub fn complete(&self, name: &str) -> PathBuf {
         let dir = self.tmp.path().join(name);
         self.run(&dir, false).expect("the sweep runs");
+        settle(&dir);
         dir
     }
 
@@ -122,11 +123,34 @@ impl Fixture {
             })
         }));
         match outcome {
-            Err(payload) if payload.is::<Interrupt>() => dir,
+            Err(payload) if payload.is::<Interrupt>() => {
+                settle(&dir);
+                dir
+            }
             Err(_) => panic!("the sweep panicked by itself"),
             Ok(r) => panic!("the sweep was not interrupted: {:?}", r.map(|r| r.runs_run)),
         }
     }
+}
+
+/// Waits until no process holds the lock an in-process sweep took on `dir`. The sweep has
+/// released it, but a child another test forked while it was held shares the descriptor until
+/// that child reaches `exec` (an instant, longer on a loaded machine): a `solsim` started on
+/// `dir` meanwhile would be refused as "in use". util-linux `flock(1)` asks from outside.
+fn settle(dir: &Path) {
+    for _ in 0..1000 {
+        let free = Command::new("flock")
+            .args(["--nonblock", "--exclusive"])
+            .arg(dir)
+            .arg("true")
+            .status()
+            .expect("util-linux flock runs");
+        if free.success() {
+            return;
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    panic!("{} stayed locked for 10 s after its sweep", dir.display());
 }
 
 /// Copies the files (and `chunks/`) of a sweep directory.
