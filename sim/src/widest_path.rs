@@ -305,36 +305,14 @@ pub fn dijkstra_bottleneck(
     goal: usize,
     window: Option<(usize, usize, usize, usize)>,
 ) -> Option<Bottleneck> {
-    assert_eq!(
-        clearance.len(),
-        width * height,
-        "clearance length must be width * height ({width} * {height})"
-    );
-    assert!(
-        start < clearance.len() && goal < clearance.len(),
-        "start {start} or goal {goal} outside the {width}×{height} grid"
-    );
-    let (col0, row0, col1, row1) = match window {
-        None => (0, 0, width - 1, height - 1),
-        Some((c0, r0, c1, r1)) => (c0, r0, c1.min(width - 1), r1.min(height - 1)),
-    };
-    if col0 > col1 || row0 > row1 {
-        return None;
-    }
-    let win_w = col1 - col0 + 1;
-    let win_h = row1 - row0 + 1;
-    let in_window = |i: usize| {
-        let (r, c) = (i / width, i % width);
-        (row0..=row1).contains(&r) && (col0..=col1).contains(&c)
-    };
-    // Window-local index → global index.
-    let global = |l: usize| (row0 + l / win_w) * width + col0 + l % win_w;
+    let w = Window::new(width, height, clearance, start, goal, window)?;
+    let (win_w, win_h) = (w.win_w, w.win_h);
+    let global = |l: usize| w.global(l);
     let usable = |i: usize| !clearance[i].is_nan() && passable(i);
-    if !in_window(start) || !in_window(goal) || !usable(start) || !usable(goal) {
+    if !usable(start) || !usable(goal) {
         return None;
     }
-    let local_of = |i: usize| (i / width - row0) * win_w + (i % width - col0);
-    let (start_l, goal_l) = (local_of(start), local_of(goal));
+    let (start_l, goal_l) = (w.local(start), w.local(goal));
 
     // Cell states; `best` is meaningful from REACHED on.
     const UNSEEN: u8 = 0;
