@@ -199,11 +199,13 @@ mod tests {
         // Landing in the mid-afternoon, about 15:53 LMST.
         let at = m.lmst(m.landing);
         assert!(at.lmst().starts_with("15:5"), "{}", at.lmst());
-        // Paper 000 §8: sol 402's plan was uplinked on Wednesday 2022-04-06 (Pasadena).
-        let noon = m.utc_at(402, SolSeconds::from_lmst(12, 0).expect("valid"));
-        assert_eq!(
-            noon.civil_day(-7.0),
-            crate::earth_time::days_from_civil(2022, 4, 6)
-        );
+        // Paper 000 §8 names sols by the day in Pasadena their plan is built, the day before
+        // their morning: sol 402's plan on Wednesday 2022-04-06 (its 09:00 LMST is Thursday
+        // morning there), sol 406 "Sunday" (its morning is Monday 2022-04-11).
+        let morning = |sol| m.utc_at(sol, SolSeconds::from_lmst(9, 0).expect("valid"));
+        let days = crate::earth_time::days_from_civil;
+        let pasadena = |t: Utc| t.civil_day(crate::earth_time::pacific_offset_h(t));
+        assert_eq!(pasadena(morning(402)), days(2022, 4, 7));
+        assert_eq!(pasadena(morning(406)), days(2022, 4, 11));
     }
 }
