@@ -60,6 +60,7 @@ pub mod expect;
 pub mod figure;
 pub mod input;
 pub mod recipe;
+pub mod record;
 pub mod sanity;
 pub mod scenario;
 pub mod schema;
