@@ -52,6 +52,7 @@ pub mod errors;
 mod filter_localization;
 pub mod localizer;
 pub mod mars_time;
+pub mod ops_calendar;
 pub mod outcome;
 pub mod physics;
 pub mod planning_grid;
