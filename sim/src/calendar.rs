@@ -48,6 +48,9 @@ pub struct SolEntry {
     pub downlink_lmst: Option<SolSeconds>,
     /// Driving is allowed this sol (false: science sol, holiday, conjunction, …).
     pub drive_allowed: bool,
+    /// This sol's own drive window (LMST start, end), instead of the calendar's: the record's
+    /// window on a historic drive sol.
+    pub window: Option<(SolSeconds, SolSeconds)>,
     /// How the plan uplinked this sol was built historically (replays).
     pub historic_planning: Option<Planning>,
     /// What the rover did historically (replays).
@@ -92,10 +95,19 @@ impl Calendar {
         u >= pass + 2 || (u == pass + 1 && !self.sols[u].restricted)
     }
 
-    /// Length of the drive window, seconds.
+    /// Length of the default drive window, seconds.
     #[must_use]
     pub fn drive_window_s(&self) -> i64 {
         (self.drive_end - self.drive_start).max(0)
+    }
+
+    /// The drive window of the sol at index `i`: its own, else the calendar's.
+    #[must_use]
+    pub fn window_of(&self, i: usize) -> (SolSeconds, SolSeconds) {
+        self.sols
+            .get(i)
+            .and_then(|e| e.window)
+            .unwrap_or((self.drive_start, self.drive_end))
     }
 }
 
@@ -109,6 +121,7 @@ pub(crate) fn test_sol(sol: u32, uplink: bool, restricted: bool, downlink: bool)
         downlink,
         downlink_lmst: None,
         drive_allowed: true,
+        window: None,
         historic_planning: None,
         historic: None,
     }

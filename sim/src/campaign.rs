@@ -18,7 +18,9 @@ use crate::outcome::{
     LocalizationStep, ScienceTally, SkipReason, SolRecord, Totals,
 };
 use crate::planning_grid::PlanningGrid;
-use crate::policy::{OperationsRules, PassagesAhead, PlanStyle, Policy, RoutePosition, RunSoFar};
+use crate::policy::{
+    GroundKnowledge, OperationsRules, PassagesAhead, PlanStyle, Policy, RoutePosition, RunSoFar,
+};
 use crate::pose::estimate_error_m;
 use crate::science::{Science, ScienceProgress, SolScience};
 use crate::sol_plan::{SolPlanParams, SolPlanRequest};
@@ -273,7 +275,12 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
                 && (ground_event.is_none() || policy.localizes_onboard);
             if !covered {
                 plan_uplink = entry.sol;
-                let decided = policy.plan(cal, idx, next_uplink, ground_knows);
+                let known = GroundKnowledge {
+                    knows_position: ground_knows,
+                    last_drive,
+                    drives_since_known: sols_since_localization,
+                };
+                let decided = policy.plan(cal, idx, next_uplink, known);
                 panorama_sol = decided.panorama_sol;
                 breadcrumbs_until = idx + decided.reasons.len();
                 plan_drive[idx..breadcrumbs_until].copy_from_slice(&decided.reasons);
@@ -322,7 +329,7 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
         };
 
         if record.drove {
-            let mut end = cal.drive_end;
+            let (drive_start, mut end) = cal.window_of(idx);
             // The ground's next plan needs this sol's panorama from the afternoon pass.
             let panorama_on_pass = entry.downlink_lmst.is_some() && panorama_sol == Some(idx);
             if let (true, Some(pass)) = (panorama_on_pass, entry.downlink_lmst) {
@@ -330,7 +337,7 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
             }
             let window = DriveLimits {
                 max_distance_m: None,
-                max_time_s: Some((end - cal.drive_start).max(0) as f64),
+                max_time_s: Some((end - drive_start).max(0) as f64),
             };
             let (mut limits, vo) = policy.drive_budget(entry, window);
             // The planners' passage limit (paper 000 §2: the drive is shortened).
@@ -347,8 +354,8 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
                 vo,
             };
             let request = SolPlanRequest {
-                drive_start: cal.drive_start,
-                drive_end: end.max(cal.drive_start),
+                drive_start,
+                drive_end: end.max(drive_start),
                 drive_rate_m_per_h: c.rover.drive_rate_m_per_h,
                 downlink: entry.downlink_lmst,
                 panorama_on_pass,

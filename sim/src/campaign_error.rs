@@ -127,14 +127,12 @@ impl Campaign {
                 });
             }
         }
-        if cal.drive_start < SolSeconds::MIDNIGHT
-            || cal.drive_end <= cal.drive_start
-            || cal.drive_end > SolSeconds::END_OF_SOL
-        {
-            return Err(CampaignError::DriveWindow {
-                start: cal.drive_start,
-                end: cal.drive_end,
-            });
+        let windows = std::iter::once((cal.drive_start, cal.drive_end))
+            .chain(cal.sols.iter().filter_map(|e| e.window));
+        for (start, end) in windows {
+            if start < SolSeconds::MIDNIGHT || end <= start || end > SolSeconds::END_OF_SOL {
+                return Err(CampaignError::DriveWindow { start, end });
+            }
         }
         let r = &self.rover;
         // (parameter, value, what is allowed)

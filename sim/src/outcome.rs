@@ -201,6 +201,15 @@ pub enum SkipReason {
     /// Ground planning: this sol's post-drive data would reach Earth after the next plan is
     /// made.
     DataTooLateForNextPlan,
+    /// Ground planning, looking ahead: driving this sol would leave a later plan without the
+    /// rover's position (its post-drive data too late), and fewer sols driven in all (paper 000
+    /// §8's reason for sols 403 and 406).
+    CostsLaterDrives {
+        /// Drive sols over the plans looked at, if this sol drove.
+        if_driven: u32,
+        /// Drive sols over the same plans, if it does not.
+        if_skipped: u32,
+    },
     /// Extension drives stop after this many sols without a localization (the scenario's
     /// optional `max_extension_sols` cap).
     ExtensionLimit {
@@ -253,6 +262,14 @@ impl fmt::Display for SkipReason {
             } => {
                 return f.pad(&format!(
                     "extension limit: {sols_without_localization} sols without a localization"
+                ));
+            }
+            SkipReason::CostsLaterDrives {
+                if_driven,
+                if_skipped,
+            } => {
+                return f.pad(&format!(
+                    "its post-drive data would reach Earth too late for a later plan: {if_driven} drive sols over the next plans if driven, {if_skipped} if not"
                 ));
             }
             SkipReason::PlanDriveSolsUsed { drive_sols } => {

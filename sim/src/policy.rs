@@ -60,6 +60,16 @@ pub struct OperationsRules {
     /// Planners shorten a drive when the predicted radius comes within this of a passage's
     /// clearance, metres (default 0: shortened when the prediction closes it).
     pub passage_margin_m: f64,
+    /// Sols `ground` drives at most without the ground knowing where the rover is, by
+    /// opportunistic extension in one-sol plans (default 3: today's practice, the longest such
+    /// extension flown, sols 407-409, paper 000 §8: "we do not expect to be able to extend
+    /// these plans for more than three sols").
+    pub ground_extension_sols: u32,
+    /// Plans `ground` looks ahead when it chooses a plan's drive sols (default 6, a week of
+    /// plans): it drives the sols that give the most drive sols over them (paper 000 §8:
+    /// "driving on sol 403 would thus have resulted in not being able to drive on sols 404 and
+    /// 405").
+    pub ground_lookahead_plans: u32,
     /// Whether plans stop short of a passage the predicted radius would close (default true:
     /// paper 000 §2's pre-emptive shortening, and the extension limit of §8). Off, every
     /// strategy drives into such passages and meets the `NO_PATH` faults that follow.
@@ -74,6 +84,41 @@ impl Default for OperationsRules {
             extension_plan_sols: 3,
             passage_margin_m: 0.0,
             preemptive_shortening: true,
+            ground_extension_sols: 3,
+            ground_lookahead_plans: 6,
+        }
+    }
+}
+
+/// The sols of the plan `first..end` the ground may command a drive on: driving is allowed and a
+/// downlink pass at or after the sol, before the next plan, can carry its post-drive data (the
+/// team does not drive a rover it cannot hear from: paper 000 §8's sol 406, "no communication
+/// pass to send data to Earth on 406"; a conjunction).
+fn ground_drivable(cal: &Calendar, first: usize, end: usize) -> Vec<usize> {
+    (first..end)
+        .filter(|&j| cal.sols[j].drive_allowed && (j..end).any(|t| cal.sols[t].downlink))
+        .collect()
+}
+
+/// What the ground knows when it builds a plan.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct GroundKnowledge {
+    /// The last drive's post-drive data is on Earth for this plan (or nothing drove yet).
+    pub knows_position: bool,
+    /// Calendar index of the last sol that drove.
+    pub last_drive: Option<usize>,
+    /// Sols driven since the last position the ground knew when it built a plan.
+    pub drives_since_known: u32,
+}
+
+impl GroundKnowledge {
+    /// What the ground knows at a plan uplinked with everything in hand.
+    #[must_use]
+    pub fn everything() -> Self {
+        Self {
+            knows_position: true,
+            last_drive: None,
+            drives_since_known: 0,
         }
     }
 }
@@ -182,15 +227,14 @@ impl Policy {
     }
 
     /// The drive sols of the plan uplinked at calendar index `first` (it runs up to the next
-    /// uplink, `next_uplink`); `ground_knows`: the last drive's post-drive data reached the
-    /// ground in time for this plan.
+    /// uplink, `next_uplink`); `known`: what the ground knows of the rover for this plan.
     #[must_use]
     pub fn plan(
         &self,
         cal: &Calendar,
         first: usize,
         next_uplink: Option<usize>,
-        ground_knows: bool,
+        known: GroundKnowledge,
     ) -> PlanDrives {
         let span = first..next_uplink.unwrap_or(cal.sols.len());
         match self.style {
@@ -216,41 +260,212 @@ impl Policy {
                 reasons: self.cap_drive_sols(cal, span.clone(), vec![None; span.len()]),
                 panorama_sol: None,
             },
-            PlanStyle::GroundInTheLoop if !ground_knows => PlanDrives {
-                reasons: vec![Some(SkipReason::AwaitingPostDriveData); span.len()],
-                panorama_sol: None,
-            },
-            PlanStyle::GroundInTheLoop => {
-                // Drive up to the last sol whose post-drive data reaches Earth before the next
-                // plan.
-                let last = span
-                    .clone()
-                    .rev()
-                    .find(|&j| cal.sols[j].drive_allowed && cal.data_available(j, next_uplink));
-                let reasons = span
-                    .clone()
-                    .map(|j| {
-                        if last.is_some_and(|l| j <= l) {
-                            None
-                        } else {
-                            Some(SkipReason::DataTooLateForNextPlan)
-                        }
+            PlanStyle::GroundInTheLoop => self.ground_plan(cal, first, next_uplink, known),
+        }
+    }
+
+    /// Today's practice, one plan: with the rover's position known, a prefix of the plan's
+    /// drive sols (at most `max_drive_sols_per_plan`); without it, an opportunistic extension
+    /// drive in a one-sol plan while fewer than `ground_extension_sols` sols have been driven
+    /// since the last known position, and nothing in a plan of several sols (a weekend plan
+    /// starts from a localized position). Of those choices the planners take the one that
+    /// drives the most sols over the next `ground_lookahead_plans` plans, the drives of this
+    /// plan breaking ties; a drive left out for that reason is
+    /// [`SkipReason::CostsLaterDrives`].
+    fn ground_plan(
+        &self,
+        cal: &Calendar,
+        first: usize,
+        next_uplink: Option<usize>,
+        known: GroundKnowledge,
+    ) -> PlanDrives {
+        let end = next_uplink.unwrap_or(cal.sols.len());
+        let plans = self.plans_from(
+            cal,
+            first,
+            self.rules.ground_lookahead_plans.max(1) as usize,
+        );
+        let options = self.ground_options(cal, first, end, known);
+        // (drive sols over the plans looked at, the next plan knows where the rover is, drive
+        // sols of this plan): the most drives; on a tie, a localized start for the next plan
+        // (the panorama the ground-in-the-loop practice drives for), then driving now.
+        let scored: Vec<(u32, bool, u32)> = options
+            .iter()
+            .map(|&(drives, after)| {
+                let knows_next = after
+                    .last_drive
+                    .is_none_or(|d| cal.data_available(d, next_uplink));
+                (
+                    drives + self.best_ground(cal, &plans[1..], after),
+                    knows_next,
+                    drives,
+                )
+            })
+            .collect();
+        let best = scored.iter().copied().max().unwrap_or((0, true, 0));
+        let chosen = scored.iter().position(|&s| s == best).unwrap_or(0);
+        let driven = options.get(chosen).map_or(0, |o| o.0);
+        let allowed = ground_drivable(cal, first, end);
+        let max_option = options.iter().map(|o| o.0).max().unwrap_or(0);
+        let mut reasons = Vec::with_capacity(end - first);
+        for j in first..end {
+            let rank = allowed.iter().position(|&a| a == j);
+            let blind = !known.knows_position && options.len() == 1;
+            let reason = match rank {
+                _ if !cal.sols[j].drive_allowed => Some(SkipReason::NoDriveInCalendar),
+                Some(r) if (r as u32) < driven => None,
+                _ if blind => Some(if end - first > 1 {
+                    SkipReason::AwaitingPostDriveData
+                } else {
+                    SkipReason::ExtensionLimit {
+                        sols_without_localization: self.rules.ground_extension_sols,
+                    }
+                }),
+                None => Some(SkipReason::DataTooLateForNextPlan),
+                Some(r) if r as u32 >= max_option && known.knows_position => {
+                    Some(SkipReason::PlanDriveSolsUsed {
+                        drive_sols: self.rules.max_drive_sols_per_plan,
                     })
-                    .collect();
-                let reasons = self.cap_drive_sols(cal, span.clone(), reasons);
-                // The panorama goes down after the plan's last commanded drive.
-                let panorama_sol = span
-                    .clone()
-                    .zip(&reasons)
-                    .rev()
-                    .find(|(j, r)| r.is_none() && cal.sols[*j].drive_allowed)
-                    .map(|(j, _)| j);
-                PlanDrives {
-                    reasons,
-                    panorama_sol,
+                }
+                Some(r) => {
+                    // The best choice that drives this sol too.
+                    let if_driven = options
+                        .iter()
+                        .zip(&scored)
+                        .filter(|(o, _)| o.0 > r as u32)
+                        .map(|(_, s)| s.0)
+                        .max()
+                        .unwrap_or(0);
+                    Some(if if_driven < best.0 {
+                        SkipReason::CostsLaterDrives {
+                            if_driven,
+                            if_skipped: best.0,
+                        }
+                    } else {
+                        SkipReason::DataTooLateForNextPlan
+                    })
+                }
+            };
+            reasons.push(reason);
+        }
+        let panorama_sol = (first..end)
+            .zip(&reasons)
+            .rev()
+            .find(|(_, r)| r.is_none())
+            .map(|(j, _)| j);
+        PlanDrives {
+            reasons,
+            panorama_sol,
+        }
+    }
+
+    /// The ground's drive sols over the whole calendar when every commanded drive happens (no
+    /// fault, no route end, no passage): why each sol does not drive, or `None`. What the
+    /// calendar alone decides for today's practice, as `solsim record baseline` reports it.
+    #[must_use]
+    pub fn calendar_schedule(&self, cal: &Calendar) -> Vec<Option<SkipReason>> {
+        let mut out = vec![Some(SkipReason::NoPlanUplinked); cal.sols.len()];
+        let mut known = GroundKnowledge::everything();
+        let mut at = (!cal.sols.is_empty()).then_some(0);
+        while let Some(u) = at {
+            let next = cal.next_uplink_after(u);
+            let knows = known
+                .last_drive
+                .is_none_or(|d| cal.data_available(d, Some(u)));
+            if knows {
+                known.knows_position = true;
+                known.drives_since_known = 0;
+            } else {
+                known.knows_position = false;
+            }
+            let plan = self.plan(cal, u, next, known);
+            for (k, reason) in plan.reasons.iter().enumerate() {
+                out[u + k] = *reason;
+                if reason.is_none() {
+                    known.last_drive = Some(u + k);
+                    known.drives_since_known += 1;
                 }
             }
+            at = next;
         }
+        out
+    }
+
+    /// The plans from the one uplinked at `first` on, at most `count`: (first, end) indices.
+    fn plans_from(&self, cal: &Calendar, first: usize, count: usize) -> Vec<(usize, usize)> {
+        let mut plans = Vec::with_capacity(count);
+        let mut at = Some(first);
+        while let Some(u) = at {
+            if plans.len() == count {
+                break;
+            }
+            let next = cal.next_uplink_after(u);
+            plans.push((u, next.unwrap_or(cal.sols.len())));
+            at = next;
+        }
+        plans
+    }
+
+    /// The ground's choices for the plan `first..end`: (drive sols, what it knows after).
+    fn ground_options(
+        &self,
+        cal: &Calendar,
+        first: usize,
+        end: usize,
+        known: GroundKnowledge,
+    ) -> Vec<(u32, GroundKnowledge)> {
+        let allowed = ground_drivable(cal, first, end);
+        let after = |drives: u32, since: u32| GroundKnowledge {
+            knows_position: false,
+            last_drive: if drives == 0 {
+                known.last_drive
+            } else {
+                Some(allowed[drives as usize - 1])
+            },
+            drives_since_known: since + drives,
+        };
+        if known.knows_position {
+            let most = (allowed.len() as u32).min(self.rules.max_drive_sols_per_plan);
+            (0..=most).map(|d| (d, after(d, 0))).collect()
+        } else if end - first == 1
+            && !allowed.is_empty()
+            && known.drives_since_known < self.rules.ground_extension_sols
+        {
+            (0..=1)
+                .map(|d| (d, after(d, known.drives_since_known)))
+                .collect()
+        } else {
+            vec![(0, after(0, known.drives_since_known))]
+        }
+    }
+
+    /// The most drive sols over `plans` from what the ground knows before the first.
+    fn best_ground(
+        &self,
+        cal: &Calendar,
+        plans: &[(usize, usize)],
+        before: GroundKnowledge,
+    ) -> u32 {
+        let Some(&(first, end)) = plans.first() else {
+            return 0;
+        };
+        let knows = before
+            .last_drive
+            .is_none_or(|d| cal.data_available(d, Some(first)));
+        let known = if knows {
+            GroundKnowledge {
+                knows_position: true,
+                last_drive: before.last_drive,
+                drives_since_known: 0,
+            }
+        } else {
+            before
+        };
+        self.ground_options(cal, first, end, known)
+            .into_iter()
+            .map(|(drives, after)| drives + self.best_ground(cal, &plans[1..], after))
+            .max()
+            .unwrap_or(0)
     }
 
     /// Keep the first `max_drive_sols_per_plan` sols of `span` that may drive; later ones skip.
@@ -410,6 +625,15 @@ mod tests {
 
     use crate::calendar::test_sol as sol;
 
+    /// The ground has not seen the last drive.
+    fn blind() -> GroundKnowledge {
+        GroundKnowledge {
+            knows_position: false,
+            last_drive: None,
+            drives_since_known: 0,
+        }
+    }
+
     /// Paper 000 §8, sols 404-406: a weekend plan uplinked on 404, no pass on 406, restricted.
     fn weekend() -> Calendar {
         Calendar {
@@ -429,8 +653,12 @@ mod tests {
         let cal = weekend();
         let next = cal.next_uplink_after(0);
         let capped = OperationsRules::default();
-        let ground =
-            Policy::new(Strategy::Ground, OperationsRules::default()).plan(&cal, 0, next, true);
+        let ground = Policy::new(Strategy::Ground, OperationsRules::default()).plan(
+            &cal,
+            0,
+            next,
+            GroundKnowledge::everything(),
+        );
         assert_eq!(
             ground.reasons,
             vec![None, None, Some(SkipReason::DataTooLateForNextPlan)]
@@ -441,17 +669,61 @@ mod tests {
             Strategy::ExtensionOnboard,
             Strategy::Extension,
         ] {
-            let p = Policy::new(s, capped).plan(&cal, 0, next, false);
+            let p = Policy::new(s, capped).plan(&cal, 0, next, blind());
             assert_eq!(p.reasons, vec![None; 3], "{s}");
             assert_eq!(p.panorama_sol, None, "{s}");
         }
         // Without the last drive's data the ground cannot plan at all.
         let blind =
-            Policy::new(Strategy::Ground, OperationsRules::default()).plan(&cal, 0, next, false);
+            Policy::new(Strategy::Ground, OperationsRules::default()).plan(&cal, 0, next, blind());
         assert_eq!(
             blind.reasons,
             vec![Some(SkipReason::AwaitingPostDriveData); 3]
         );
+    }
+
+    /// Paper 000 §8's fortnight under the calendar computed from Mars time, with the one input
+    /// the rules cannot know (no relay pass on sol 406): the ground drives every sol the record
+    /// drove from 397 to 409 and skips 403 and 406 for the paper's reasons.
+    #[test]
+    fn ground_on_the_computed_calendar_skips_403_and_406_for_the_papers_reasons() {
+        use crate::ops_calendar::TeamRules;
+        let rules = TeamRules::for_mission(crate::mars_time::MARS_2020, 2022..=2022);
+        let sols = rules
+            .compute(397..=409)
+            .iter()
+            .enumerate()
+            .map(|(i, c)| SolEntry {
+                uplink: c.uplink || i == 0,
+                restricted: c.restricted && c.uplink,
+                downlink: c.sol != 406,
+                ..sol(c.sol, true, false, true)
+            })
+            .collect();
+        let cal = Calendar {
+            sols,
+            drive_start: SolSeconds(0),
+            drive_end: SolSeconds(1),
+        };
+        let got = Policy::new(Strategy::Ground, OperationsRules::default()).calendar_schedule(&cal);
+        let drove: Vec<u32> = cal
+            .sols
+            .iter()
+            .zip(&got)
+            .filter(|(_, r)| r.is_none())
+            .map(|(e, _)| e.sol)
+            .collect();
+        assert_eq!(
+            drove,
+            [397, 398, 399, 400, 401, 402, 404, 405, 407, 408, 409],
+            "{got:?}"
+        );
+        assert!(
+            matches!(got[6], Some(SkipReason::CostsLaterDrives { if_driven, if_skipped } ) if if_driven < if_skipped),
+            "403: {:?}",
+            got[6]
+        );
+        assert_eq!(got[9], Some(SkipReason::DataTooLateForNextPlan), "406");
     }
 
     #[test]
@@ -492,11 +764,11 @@ mod tests {
         // Onboard drives the plan's three sols; ground only the first, whose data reaches
         // Earth before the next plan (no pass in the gap).
         for (s, want) in [(Strategy::Onboard, 3), (Strategy::Ground, 1)] {
-            let p = Policy::new(s, rules).plan(&cal, 0, next, true);
+            let p = Policy::new(s, rules).plan(&cal, 0, next, GroundKnowledge::everything());
             let drives = p.reasons.iter().filter(|r| r.is_none()).count();
             assert_eq!(drives, want, "{s}: {:?}", p.reasons);
         }
-        let p = Policy::new(Strategy::ExtensionOnboard, rules).plan(&cal, 0, next, false);
+        let p = Policy::new(Strategy::ExtensionOnboard, rules).plan(&cal, 0, next, blind());
         assert_eq!(p.reasons, vec![None; 22]);
     }
 

@@ -673,12 +673,12 @@ mod tests {
             &drive(380, "11_1110", "11_2472", 700_671_634.0, 700_683_201.0)
                 .replace("\"length\":10.5", "\"length\":\"far\""),
         )
-        .unwrap_err();
+        .expect_err("an error");
         assert_eq!(
             e.to_string(),
             r#"t.json: features[0].properties.length: expected a path length, metres ≥ 0, got "far""#
         );
-        let e = TraverseLayer::from_json_str(Path::new("z.json"), r#"{"type":"FeatureCollection","features":[{"type":"Feature","properties":{"kind":"keep_out"},"geometry":null}]}"#).unwrap_err();
+        let e = TraverseLayer::from_json_str(Path::new("z.json"), r#"{"type":"FeatureCollection","features":[{"type":"Feature","properties":{"kind":"keep_out"},"geometry":null}]}"#).expect_err("an error");
         assert!(
             e.to_string()
                 .starts_with("z.json: features[0].properties.sol: expected a sol number"),
@@ -694,7 +694,7 @@ mod tests {
         .expect("a layer");
         assert!(
             l.sols(500..=510)
-                .unwrap_err()
+                .expect_err("an error")
                 .to_string()
                 .contains("within the sols this record covers, 380-380")
         );

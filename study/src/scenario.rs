@@ -119,6 +119,23 @@ pub struct ScenarioSpec {
     pub notes: Vec<(u32, String)>,
     /// Whether any sol has historic data.
     pub has_history: bool,
+    /// The calendar computed from Mars time (`[calendar]`), with the typed per-sol overrides.
+    pub computed_calendar: Option<ComputedCalendar>,
+    /// Per sol with a historic drive, where its distance comes from (`historic_source`).
+    pub historic_sources: Vec<(u32, String)>,
+}
+
+/// A calendar computed from Mars time and the team's rules (`[calendar]`), and what the
+/// scenario typed over it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ComputedCalendar {
+    /// The rules.
+    pub rules: sim::ops_calendar::TeamRules,
+    /// What they give, per sol of the scenario.
+    pub sols: Vec<sim::ops_calendar::ComputedSol>,
+    /// Typed per-sol values that replace the computed ones (historic inputs): (sol, field,
+    /// value).
+    pub overrides: Vec<(u32, &'static str, bool)>,
 }
 
 /// `[study_segment]`: the stretch of the traverse a study compares strategies on — the sols
@@ -210,6 +227,10 @@ pub struct Scenario {
     pub study_segment: Option<StudySegment>,
     /// Per-sol notes from the file.
     pub notes: Vec<(u32, String)>,
+    /// The calendar computed from Mars time (`[calendar]`), with the typed overrides.
+    pub computed_calendar: Option<ComputedCalendar>,
+    /// Per sol with a historic drive, where its distance comes from.
+    pub historic_sources: Vec<(u32, String)>,
     /// Whether any sol has historic data (so the `replay` strategy is meaningful).
     pub has_history: bool,
     /// The map layers (appearance, DEM, terrain class), loaded once and shared.
@@ -674,8 +695,13 @@ impl ScenarioSpec {
                 "none",
             ));
         }
+        let computed_calendar = match &raw.calendar {
+            None => None,
+            Some(cal) => Some(computed_calendar(&c, cal, &raw.sols)?),
+        };
         let mut sols = Vec::with_capacity(raw.sols.len());
         let mut notes = Vec::new();
+        let mut historic_sources = Vec::new();
         let mut has_history = false;
         for (i, s) in raw.sols.iter().enumerate() {
             let f = |name: &str| format!("sols[{i}].{name}");
@@ -692,7 +718,11 @@ impl ScenarioSpec {
                     s.sol,
                 ));
             }
-            let uplink = s.uplink.unwrap_or(true);
+            let computed = computed_calendar.as_ref().map(|cc| &cc.sols[i]);
+            // The first sol's plan was uplinked before the range, if not on it.
+            let uplink = s
+                .uplink
+                .unwrap_or_else(|| computed.is_none_or(|cs| cs.uplink || i == 0));
             if i == 0 && !uplink {
                 return Err(ScenarioError::field(
                     path,
@@ -775,13 +805,54 @@ impl ScenarioSpec {
             if !s.note.is_empty() {
                 notes.push((s.sol, s.note.clone()));
             }
+            if let Some(source) = &s.historic_source {
+                if historic.is_none() {
+                    return Err(ScenarioError::field(
+                        path,
+                        f("historic_source"),
+                        "only with historic_distance_m",
+                        format!("{source:?}"),
+                    ));
+                }
+                historic_sources.push((s.sol, source.clone()));
+            }
+            let window = match (&s.historic_drive_start_lmst, &s.historic_drive_end_lmst) {
+                (None, None) => None,
+                (start, Some(end)) => {
+                    let end = c.lmst(&f("historic_drive_end_lmst"), end)?;
+                    let start = match start {
+                        Some(t) => c.lmst(&f("historic_drive_start_lmst"), t)?,
+                        None => drive_start,
+                    };
+                    if end <= start {
+                        return Err(ScenarioError::field(
+                            path,
+                            f("historic_drive_end_lmst"),
+                            format!("a time after the drive's start ({})", start.lmst()),
+                            end.lmst(),
+                        ));
+                    }
+                    Some((start, end))
+                }
+                (Some(_), None) => {
+                    return Err(ScenarioError::field(
+                        path,
+                        f("historic_drive_end_lmst"),
+                        "the end of the window whenever historic_drive_start_lmst is given",
+                        "nothing",
+                    ));
+                }
+            };
             sols.push(SolEntry {
                 sol: s.sol,
                 uplink,
-                restricted: s.restricted.unwrap_or(false),
+                restricted: s
+                    .restricted
+                    .unwrap_or_else(|| computed.is_some_and(|cs| cs.restricted && uplink)),
                 downlink: s.downlink.unwrap_or(true),
                 downlink_lmst,
                 drive_allowed: s.drive.unwrap_or(true),
+                window,
                 historic_planning,
                 historic,
             });
@@ -934,6 +1005,21 @@ impl ScenarioSpec {
             preemptive_shortening: ops
                 .preemptive_shortening
                 .unwrap_or(defaults.preemptive_shortening),
+            ground_extension_sols: match ops.ground_extension_sols {
+                Some(0) => 0,
+                v => sols_field("ground_extension_sols", v, defaults.ground_extension_sols)?,
+            },
+            ground_lookahead_plans: match ops.ground_lookahead_plans {
+                Some(v) if !(1..=12).contains(&v) => {
+                    return Err(ScenarioError::field(
+                        path,
+                        "operations.ground_lookahead_plans",
+                        "1 ..= 12 plans",
+                        v,
+                    ));
+                }
+                v => v.unwrap_or(defaults.ground_lookahead_plans),
+            },
         };
         Ok(ScenarioSpec {
             path: path.to_path_buf(),
@@ -969,8 +1055,115 @@ impl ScenarioSpec {
             study_segment,
             notes,
             has_history,
+            computed_calendar,
+            historic_sources,
         })
     }
+}
+
+/// `"HH:MM"` in Pasadena as hours after midnight.
+fn pasadena_clock(c: &Check<'_>, field: &str, v: &str) -> Result<f64, ScenarioError> {
+    sim::time::SolSeconds::parse_lmst(v)
+        .filter(|_| v < "24:00")
+        .map(|_| {
+            let (h, m) = v.split_at(2);
+            f64::from(h.parse::<u32>().unwrap_or(0))
+                + f64::from(m[1..].parse::<u32>().unwrap_or(0)) / 60.0
+        })
+        .ok_or_else(|| {
+            c.err(
+                field,
+                "a time of day in Pasadena \"HH:MM\", 00:00 to 23:59",
+                format!("{v:?}"),
+            )
+        })
+}
+
+/// The `[calendar]` table: the team's rules (defaults of [`TeamRules::for_mission`] where not
+/// given), computed over the scenario's sols, with the typed `uplink` / `restricted` values
+/// of `[[sols]]` recorded as overrides.
+fn computed_calendar(
+    c: &Check<'_>,
+    raw: &raw::RawCalendar,
+    sols: &[raw::RawSol],
+) -> Result<ComputedCalendar, ScenarioError> {
+    use sim::ops_calendar::TeamRules;
+    if raw.mission != "mars2020" {
+        return Err(c.err(
+            "calendar.mission",
+            "\"mars2020\" (the mission whose Mars time and landing sol solsim knows)",
+            format!("{:?}", raw.mission),
+        ));
+    }
+    let (Some(first), Some(last)) = (sols.first(), sols.last()) else {
+        return Err(c.err("sols", "at least one [[sols]] entry", "none"));
+    };
+    let mut rules = TeamRules::for_mission(sim::mars_time::MARS_2020, 2020..=2040);
+    if let Some(t) = &raw.uplink_lmst {
+        rules.uplink_lmst = c.lmst("calendar.uplink_lmst", t)?;
+    }
+    if let Some(t) = &raw.relay_pass_lmst {
+        rules.relay_pass_lmst = c.lmst("calendar.relay_pass_lmst", t)?;
+    }
+    if let Some(v) = raw.relay_latency_h {
+        rules.relay_latency_h = ranges::CALENDAR_HOURS.check(c, "calendar.relay_latency_h", v)?;
+    }
+    if let Some(v) = raw.light_time_min {
+        rules.light_time_min = ranges::LIGHT_TIME_MIN.check(c, "calendar.light_time_min", v)?;
+    }
+    if let Some(v) = raw.shift_hours {
+        rules.shift_hours = ranges::CALENDAR_HOURS.check(c, "calendar.shift_hours", v)?;
+    }
+    if let Some(t) = &raw.shift_earliest_start_pt {
+        rules.shift_earliest_start_pt_h = pasadena_clock(c, "calendar.shift_earliest_start_pt", t)?;
+    }
+    if let Some(t) = &raw.shift_latest_start_pt {
+        rules.shift_latest_start_pt_h = pasadena_clock(c, "calendar.shift_latest_start_pt", t)?;
+    }
+    if rules.shift_latest_start_pt_h < rules.shift_earliest_start_pt_h {
+        return Err(c.err(
+            "calendar.shift_latest_start_pt",
+            "a time at or after shift_earliest_start_pt",
+            format!("{:.2} h", rules.shift_latest_start_pt_h),
+        ));
+    }
+    for (i, d) in raw.holidays.iter().enumerate() {
+        let day = sim::earth_time::Utc::parse_iso(&format!("{d}T12:00:00Z"))
+            .filter(|_| d.len() == 10)
+            .ok_or_else(|| {
+                c.err(
+                    &format!("calendar.holidays[{i}]"),
+                    "a date \"YYYY-MM-DD\"",
+                    format!("{d:?}"),
+                )
+            })?;
+        rules.holidays.push(day.civil_day(0.0));
+    }
+    if u64::from(last.sol) > 20_000 {
+        return Err(c.err(
+            "sols",
+            "sols within 20000 of landing for a computed calendar",
+            last.sol,
+        ));
+    }
+    let computed = rules.compute(first.sol..=last.sol);
+    let overrides = sols
+        .iter()
+        .flat_map(|s| {
+            [
+                s.uplink.map(|v| (s.sol, "uplink", v)),
+                s.restricted.map(|v| (s.sol, "restricted", v)),
+                s.downlink.map(|v| (s.sol, "downlink", v)),
+                s.drive.map(|v| (s.sol, "drive", v)),
+            ]
+        })
+        .flatten()
+        .collect();
+    Ok(ComputedCalendar {
+        rules,
+        sols: computed,
+        overrides,
+    })
 }
 
 impl Scenario {
@@ -1320,6 +1513,8 @@ impl Scenario {
             statistical_expectations: spec.statistical_expectations,
             study_segment: spec.study_segment,
             notes: spec.notes,
+            computed_calendar: spec.computed_calendar,
+            historic_sources: spec.historic_sources,
             has_history: spec.has_history,
             layers,
             zones: Arc::new(zones),

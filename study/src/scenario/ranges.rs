@@ -123,3 +123,9 @@ pub const DRIVE_LENGTH_M: PhysicalRange = PhysicalRange::new(0.1, 100_000.0, MET
 pub const CADENCE_M: PhysicalRange = PhysicalRange::new(1.0, 100_000.0, METRES);
 /// A state-based cadence's tolerance (`tolerance_m`): 0 (exactly at the distance) to 100 km.
 pub const CADENCE_TOLERANCE_M: PhysicalRange = PhysicalRange::new(0.0, 100_000.0, METRES);
+
+/// `calendar.relay_latency_h`, `calendar.shift_hours`: a delay or a shift within the day,
+/// hours.
+pub const CALENDAR_HOURS: PhysicalRange = PhysicalRange::new(0.0, 24.0, "hours");
+/// `calendar.light_time_min`: Earth-Mars one-way light time is 3-22 minutes.
+pub const LIGHT_TIME_MIN: PhysicalRange = PhysicalRange::new(0.0, 30.0, "minutes");

@@ -35,6 +35,7 @@ pub struct RawScenario {
     #[serde(default)]
     pub(crate) operations: RawOperations,
     pub(crate) route: RawRoute,
+    pub(crate) calendar: Option<RawCalendar>,
     pub(crate) sols: Vec<RawSol>,
     #[serde(default)]
     pub(crate) science: crate::campaign_file::raw::RawScience,
@@ -146,6 +147,25 @@ pub(crate) struct RawOperations {
     pub(crate) extension_plan_sols: Option<u32>,
     pub(crate) passage_margin_m: Option<f64>,
     pub(crate) preemptive_shortening: Option<bool>,
+    pub(crate) ground_extension_sols: Option<u32>,
+    pub(crate) ground_lookahead_plans: Option<u32>,
+}
+
+/// `[calendar]`: uplinks and restricted sols computed from Mars time and the team's rules
+/// (`sim::ops_calendar`), instead of typed per sol.
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawCalendar {
+    pub(crate) mission: String,
+    pub(crate) uplink_lmst: Option<String>,
+    pub(crate) relay_pass_lmst: Option<String>,
+    pub(crate) relay_latency_h: Option<f64>,
+    pub(crate) light_time_min: Option<f64>,
+    pub(crate) shift_earliest_start_pt: Option<String>,
+    pub(crate) shift_latest_start_pt: Option<String>,
+    pub(crate) shift_hours: Option<f64>,
+    #[serde(default)]
+    pub(crate) holidays: Vec<String>,
 }
 
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
@@ -167,6 +187,9 @@ pub(crate) struct RawSol {
     pub(crate) historic_distance_m: Option<f64>,
     pub(crate) historic_novo_m: Option<f64>,
     pub(crate) historic_fault: Option<String>,
+    pub(crate) historic_drive_start_lmst: Option<String>,
+    pub(crate) historic_drive_end_lmst: Option<String>,
+    pub(crate) historic_source: Option<String>,
     #[serde(default)]
     pub(crate) note: String,
 }
