@@ -69,6 +69,7 @@ mod issue_26_symlinked_chunks_dir;
 mod issue_26_terminal_escape;
 mod localize_cli;
 mod localizer_comparison;
+mod mars_time_mars24;
 mod operations_rules;
 mod package_cli;
 mod plan_cli;

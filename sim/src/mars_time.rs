@@ -17,6 +17,16 @@
 //! reference longitude. Everything here is checked against an independent implementation (the
 //! `marstime` package fed TT from ERFA) over 1000+ instants in `tests/mars_time_mars24.rs`, and
 //! every drive of the public record lands on its filed sol (`tests/record_import.rs`).
+//!
+//! The Mars24 page's worked examples (unit tests here) use Allison's later constants,
+//! 1.0274912517 d and 0.0009626 sol; the paper's, kept here, give times 0.23 s later in 2000,
+//! 0.19 s later in 2004, and within 0.04 s of them over the Mars 2020 mission (2021-2026).
+//!
+//! ## References
+//!
+//! - M. Allison and M. McEwen (2000), Planet. Space Sci. 48, 215-235, eq. 32 (above).
+//! - NASA GISS, "Mars24 Sunclock — Algorithm and Worked Examples",
+//!   <https://www.giss.nasa.gov/tools/mars24/help/algorithm.html>: examples A and B.
 
 use crate::earth_time::{DAY_S, Utc, tt_minus_utc_s};
 use crate::time::{SOL_S, SolSeconds};
@@ -157,19 +167,98 @@ pub fn m20_sclk_from_utc(t: Utc) -> f64 {
 mod tests {
     use super::*;
 
-    /// Allison & McEwen (2000) and the Mars24 worked example (NASA GISS, "Mars24 Sunclock —
-    /// Algorithm and Worked Examples", example A: 2000-01-06 00:00:00 UTC): JD_TT 2451549.50074,
-    /// Δt_J2000 4.50074, MSD 44795.99975, MTC 23:59:38.
+    /// The MSD of the Mars24 page below: its later constants (1.0274912517 d and 0.0009626 sol,
+    /// Allison's revisions after the paper) where this module keeps the paper's (1.027491252 d,
+    /// 0.00096 sol). The two differ by (Δt_J2000 − 4.5) × 2.84e-10 − 2.6e-6 sol: 0.23 s in 2000,
+    /// 0.19 s in 2004, under 0.04 s over the Mars 2020 mission (2021-2026).
+    fn msd_mars24_page(j2000_tt_days: f64) -> f64 {
+        (j2000_tt_days - 4.5) / 1.027_491_251_7 + 44_796.0 - 0.000_962_6
+    }
+
+    /// SI seconds in a Mars hour.
+    const MARS_HOUR_S: f64 = SOL_IN_DAYS * DAY_S / 24.0;
+
+    /// Checks one worked example of NASA GISS, "Mars24 Sunclock — Algorithm and Worked
+    /// Examples" (<https://www.giss.nasa.gov/tools/mars24/help/algorithm.html>, section III),
+    /// published to 6 decimals of days (example A) or 5 (example B) and 5 decimals of hours:
+    ///
+    /// - our Δt_J2000 (steps A-1..A-6: UTC, TT − UTC = 64.184 s) is the published one to its
+    ///   last digit;
+    /// - the page's own constants ([`msd_mars24_page`]) applied to our Δt_J2000 give the
+    ///   published MTC (C-2) and LMST (C-3) to their last digit: the page is reproduced;
+    /// - our MTC and LMST (the paper's constants) are within 0.25 s of the published ones: the
+    ///   difference the constants explain, `shift_s`, and the published rounding (0.02 s).
+    fn check_worked_example(
+        t: Utc,
+        published_dt_days: f64,
+        dt_decimals: i32,
+        longitude_east_deg: f64,
+        published_mtc_h: f64,
+        published_lmst_h: f64,
+        shift_s: f64,
+    ) {
+        let dt = j2000_tt_days(t);
+        let half_unit = |decimals: i32| 0.5 * 10f64.powi(-decimals) + 1e-12;
+        assert!(
+            (dt - published_dt_days).abs() <= half_unit(dt_decimals),
+            "Δt_J2000 {dt}"
+        );
+        let page_mtc_h = 24.0 * msd_mars24_page(dt).rem_euclid(1.0);
+        let page_lmst_h = (page_mtc_h + longitude_east_deg / 15.0).rem_euclid(24.0);
+        assert!(
+            (page_mtc_h - published_mtc_h).abs() <= half_unit(5),
+            "{page_mtc_h}"
+        );
+        assert!(
+            (page_lmst_h - published_lmst_h).abs() <= half_unit(5),
+            "{page_lmst_h}"
+        );
+        let explained_s = (mars_sol_date(t) - msd_mars24_page(dt)) * SOL_IN_DAYS * DAY_S;
+        assert!((explained_s - shift_s).abs() < 0.01, "{explained_s}");
+        let mtc_s = (coordinated_mars_time_h(t) - published_mtc_h) * MARS_HOUR_S;
+        let lmst_s = (lmst_h(t, longitude_east_deg) - published_lmst_h) * MARS_HOUR_S;
+        let rounding_s = half_unit(5) * MARS_HOUR_S;
+        for d_s in [mtc_s, lmst_s] {
+            assert!(
+                (d_s - shift_s).abs() <= rounding_s,
+                "{d_s} s, {shift_s} s explained"
+            );
+            assert!(d_s.abs() < 0.25, "{d_s} s");
+        }
+    }
+
+    /// Mars24 worked example A, 2000-01-06 00:00:00 UTC at the prime meridian: JD_TT
+    /// 2451549.500743, Δt_J2000 4.500743 days, MTC (the page's MST) = LMST = 23.99425 h =
+    /// 23:59:39 (MSD 44795.99976). With the paper's constants MTC is 23.99431 h, 0.23 s later.
     #[test]
     fn worked_example_a() {
         let t = Utc::from_civil(2000, 1, 6, 0, 0, 0.0);
-        assert!((j2000_tt_days(t) - 4.500_743).abs() < 1e-6);
-        let msd = mars_sol_date(t);
-        assert!((msd - 44_795.999_76).abs() < 1e-5, "{msd}");
-        let mtc_s = coordinated_mars_time_h(t) * 3600.0;
-        assert!(
-            (mtc_s - (23.0 * 3600.0 + 59.0 * 60.0 + 38.0)).abs() < 2.0,
-            "{mtc_s}"
+        assert_eq!(tt_minus_utc_s(t), 64.184);
+        assert!((j2000_tt_days(t) + JD_J2000 - 2_451_549.500_743).abs() <= 5e-7);
+        assert_eq!(mars_sol_date(t).floor(), 44_795.0);
+        check_worked_example(t, 4.500_743, 6, 0.0, 23.994_25, 23.994_25, 0.231);
+    }
+
+    /// Mars24 worked example B, 2004-01-03 13:46:31 UTC (Spirit's landing) at 184.702° W
+    /// (175.298° E): JD_UT 2453008.07397, JD_TT 2453008.07471, Δt_J2000 1463.07471 days, MTC
+    /// 13.16537 h = 13:09:55, LMST 0.85190 h = 00:51:07 (MSD 46215.54856). With the paper's
+    /// constants MTC is 13.16542 h, 0.19 s later.
+    #[test]
+    fn worked_example_b() {
+        let t = Utc::from_civil(2004, 1, 3, 13, 46, 31.0);
+        assert_eq!(t.0, 1_073_137_591.0);
+        assert!((t.0 / DAY_S + JD_UNIX_EPOCH - 2_453_008.073_97).abs() <= 5e-6);
+        assert_eq!(tt_minus_utc_s(t), 64.184);
+        assert!((j2000_tt_days(t) + JD_J2000 - 2_453_008.074_71).abs() <= 5e-6);
+        assert_eq!(mars_sol_date(t).floor(), 46_215.0);
+        check_worked_example(
+            t,
+            1_463.074_71,
+            5,
+            360.0 - 184.702,
+            13.165_37,
+            0.851_90,
+            0.194,
         );
     }
 
