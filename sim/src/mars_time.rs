@@ -31,6 +31,9 @@
 use crate::earth_time::{DAY_S, Utc, tt_minus_utc_s};
 use crate::time::{SOL_S, SolSeconds};
 
+/// J2000 (2000-01-01T12:00:00 TT) as seconds of TT on the POSIX count: JD 2451545.0 −
+/// JD 2440587.5 (the Unix epoch) = 10957.5 days.
+const J2000_TT_UNIX_S: f64 = (JD_J2000 - JD_UNIX_EPOCH) * DAY_S;
 /// Julian Date of 1970-01-01T00:00:00 (the Unix epoch).
 const JD_UNIX_EPOCH: f64 = 2_440_587.5;
 /// Julian Date of the J2000 epoch, 2000-01-01T12:00:00 TT.
@@ -41,13 +44,14 @@ pub const SOL_IN_DAYS: f64 = 1.027_491_252;
 /// Days of Terrestrial Time since J2000 (Δt_J2000) at a UTC instant.
 #[must_use]
 pub fn j2000_tt_days(t: Utc) -> f64 {
-    (t.0 + tt_minus_utc_s(t)) / DAY_S + JD_UNIX_EPOCH - JD_J2000
+    // Seconds first, days last: through a Julian Date of 2.4e6 days the f64 keeps 4e-5 s.
+    (t.0 + tt_minus_utc_s(t) - J2000_TT_UNIX_S) / DAY_S
 }
 
 /// The UTC instant `days` of Terrestrial Time after J2000 (the inverse of [`j2000_tt_days`]).
 #[must_use]
 pub fn utc_from_j2000_tt_days(days: f64) -> Utc {
-    let tt_unix = (days + JD_J2000 - JD_UNIX_EPOCH) * DAY_S;
+    let tt_unix = days * DAY_S + J2000_TT_UNIX_S;
     // TT − UTC changes by a second at a leap second: two rounds settle it.
     let mut t = Utc(tt_unix - 69.184);
     for _ in 0..2 {
