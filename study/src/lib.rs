@@ -61,6 +61,7 @@ pub mod figure;
 pub mod input;
 pub mod recipe;
 pub mod record;
+pub mod record_import;
 pub mod sanity;
 pub mod scenario;
 pub mod schema;
