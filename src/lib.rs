@@ -24,6 +24,7 @@ pub mod cmd_localize_rasters;
 pub mod cmd_map;
 pub mod cmd_package;
 pub mod cmd_plan;
+pub mod cmd_record;
 pub mod cmd_report;
 pub mod cmd_slip_profile;
 pub mod cmd_sweep;

@@ -160,6 +160,10 @@ enum Command {
     /// intervals. Example: scenarios/dune-crossing.toml against
     /// scenarios/dune-crossing-slip-unaware.toml asks what slip-aware routing buys.
     Whatif(solsim::cmd_whatif::WhatifArgs),
+    /// The public record of Perseverance's drives (NASA's MMGIS layers, bundled in data/m20):
+    /// import a sol range as a replay scenario; set the ground strategy beside the record.
+    #[command(subcommand)]
+    Record(solsim::cmd_record::RecordCommand),
     /// Re-derive a calibrated constant of the error model from a scenario's historic record
     /// (the command each calibrated default names).
     #[command(subcommand)]
@@ -482,6 +486,10 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
         }
         Command::Calibrate(c) => {
             solsim::cmd_calibrate::run(&c, budget, stdout)?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Record(c) => {
+            solsim::cmd_record::run(&c, budget, stdout)?;
             Ok(ExitCode::SUCCESS)
         }
         Command::Whatif(a) => {

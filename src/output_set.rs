@@ -128,6 +128,27 @@ impl OutputSet {
         Ok(self.target.join(name))
     }
 
+    /// Where a writer of its own (a GeoTIFF writer, say) puts `name` inside the set: the staging
+    /// path, its folders made. The file must be complete before [`OutputSet::commit`].
+    ///
+    /// # Errors
+    /// [`OutputSetError::Io`].
+    ///
+    /// # Panics
+    /// As [`OutputSet::write`].
+    pub fn staging_path(&self, name: &str) -> Result<PathBuf, OutputSetError> {
+        let relative = Path::new(name);
+        assert!(
+            relative
+                .components()
+                .all(|c| matches!(c, std::path::Component::Normal(_))),
+            "output name {name:?} must be a relative path inside the set"
+        );
+        let path = self.staging.join(relative);
+        fs::create_dir_all(&path).map_err(io(&path))?;
+        Ok(path)
+    }
+
     /// Puts the set in place of the earlier one, atomically.
     ///
     /// # Errors

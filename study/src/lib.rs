@@ -52,6 +52,7 @@
 //! ```
 #![warn(missing_docs)]
 
+pub mod baseline;
 pub mod calibrate;
 pub mod campaign_file;
 mod check;

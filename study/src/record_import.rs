@@ -178,6 +178,8 @@ pub struct ImportedSol {
     pub no_relay_pass: bool,
     /// Why the sol has no drive (the record's idle sols), as the scenario's note says.
     pub note: String,
+    /// A drive sol the ground planned from a known position (the passage rule's sols).
+    pub from_fix: bool,
 }
 
 /// A scenario built from the record.
@@ -197,6 +199,152 @@ pub struct Imported {
     pub drive_rate_m_per_h: f64,
     /// Route length, metres.
     pub route_length_m: f64,
+    /// The route's waypoints, map metres.
+    pub route_m: Vec<[f64; 2]>,
+    /// The options it was imported with.
+    pub options: ImportOptions,
+}
+
+/// The line of [`Imported::scenario_toml`] that holds the AutoNav rate, up to its value: the
+/// record's own speed until [`Imported::with_calibrated_rate`] puts the calibrated one there.
+pub const DRIVE_RATE_MARK: &str =
+    "# The record's own speed (see the header); not yet calibrated.\ndrive_rate_m_per_h = ";
+
+/// Metres along the polyline `points` (cumulative `cum`) of its point nearest `p`.
+#[must_use]
+pub fn project_onto(points: &[[f64; 2]], cum: &[f64], p: [f64; 2]) -> f64 {
+    let mut best = (f64::MAX, 0.0);
+    for k in 1..points.len() {
+        let (a, b) = (points[k - 1], points[k]);
+        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+        let len2 = (dx * dx + dy * dy).max(1e-12);
+        let t = (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2).clamp(0.0, 1.0);
+        let q = [a[0] + t * dx, a[1] + t * dy];
+        let d = (p[0] - q[0]).hypot(p[1] - q[1]);
+        if d < best.0 {
+            best = (d, cum[k - 1] + t * len2.sqrt());
+        }
+    }
+    best.1
+}
+
+/// Half-width of the keep-in corridor along the route, metres: the passages' blocks reach
+/// [`PASSAGE_REACH_M`] to either side, past its edge, so no detour goes around them.
+pub const CORRIDOR_HALF_WIDTH_M: f64 = 150.0;
+/// How far a passage's blocks reach from the gap, metres.
+pub const PASSAGE_REACH_M: f64 = 180.0;
+
+/// Half a planning-grid cell, metres: the grid measures a gap to cell centres, so it is added
+/// to each passage's half gap for the clearance `solsim validate` reports to be the intended
+/// one within a cell (the imported scenarios' grid is 2 m).
+const GRID_HALF_CELL_M: f64 = 1.0;
+
+impl Imported {
+    /// The keep-in corridor: the route buffered by [`CORRIDOR_HALF_WIDTH_M`] (round joins), a
+    /// GeoJSON feature (a modelling choice, as the rover planners' keep-in zones of paper 000
+    /// Fig. 3).
+    fn corridor(&self) -> String {
+        use geo::Buffer as _;
+        let line = geo::LineString::from(
+            self.route_m
+                .iter()
+                .map(|p| (p[0], p[1]))
+                .collect::<Vec<_>>(),
+        );
+        let area = line.buffer(CORRIDOR_HALF_WIDTH_M);
+        let ring = |r: &geo::LineString<f64>| -> String {
+            let pts: Vec<String> =
+                r.0.iter()
+                    .map(|c| format!("[{}, {}]", round1(c.x), round1(c.y)))
+                    .collect();
+            format!("[{}]", pts.join(", "))
+        };
+        let polygons: Vec<String> = area
+            .0
+            .iter()
+            .map(|p| {
+                let mut rings = vec![ring(p.exterior())];
+                rings.extend(p.interiors().iter().map(ring));
+                format!("[{}]", rings.join(", "))
+            })
+            .collect();
+        format!(
+            r#"{{"type": "Feature", "properties": {{"kind": "keep_in", "name": "corridor {CORRIDOR_HALF_WIDTH_M} m either side of the recorded route"}}, "geometry": {{"type": "MultiPolygon", "coordinates": [{}]}}}}"#,
+            polygons.join(", ")
+        )
+    }
+
+    /// The zones: the passages of the import rule, placed with each sol's start at
+    /// `sol_start_along_m[i]` metres along the route (the first placement takes the recorded
+    /// path's; `solsim record import` places them again where the replay, run without them,
+    /// starts each sol, so the replay meets each passage where the rule says). Returns the
+    /// GeoJSON and the number of passages.
+    #[must_use]
+    pub fn place_passages(&self, sol_start_along_m: &[f64]) -> (String, usize) {
+        let opts = &self.options;
+        let cum = along(&self.route_m);
+        let mut zones: Vec<String> = Vec::new();
+        let mut last_passage = f64::NEG_INFINITY;
+        for (i, x) in self.sols.iter().enumerate() {
+            let Some(&start) = sol_start_along_m.get(i) else {
+                break;
+            };
+            if x.distance_m <= 0.0 {
+                continue;
+            }
+            if x.no_path {
+                // The fault: 20 m past the paper's distance into the sol, closing at paper
+                // 000's radius at the fault.
+                let at = start + x.distance_m + 20.0;
+                let (p, d) = point_at(&self.route_m, &cum, at);
+                let half = PAPER_000_385_FAULT_R_M + opts.footprint_radius_m + GRID_HALF_CELL_M;
+                zones.extend(passage_features(
+                    &format!(
+                        "sol {} passage (NO_PATH, paper 000 Fig. 4; {at:.0} m along the route)",
+                        x.sol
+                    ),
+                    p,
+                    d,
+                    half,
+                ));
+                last_passage = at;
+            } else if x.from_fix
+                && x.distance_m > 2.0 * opts.passage_into_sol_m
+                && start + opts.passage_into_sol_m - last_passage >= opts.passage_spacing_m
+            {
+                let at = start + opts.passage_into_sol_m;
+                let (p, d) = point_at(&self.route_m, &cum, at);
+                let half = opts.passage_clearance_m + opts.footprint_radius_m + GRID_HALF_CELL_M;
+                zones.extend(passage_features(
+                    &format!("sol {} passage ({at:.0} m along the route)", x.sol),
+                    p,
+                    d,
+                    half,
+                ));
+                last_passage = at;
+            }
+        }
+        let n = zones.len() / 2;
+        zones.push(self.corridor());
+        (
+            format!(
+                "{{\"type\": \"FeatureCollection\", \"features\": [\n{}\n]}}\n",
+                zones.join(",\n")
+            ),
+            n,
+        )
+    }
+
+    /// The scenario text with `rate_m_per_h` as its AutoNav rate and `how` (what it was
+    /// calibrated to) in its comment.
+    #[must_use]
+    pub fn with_calibrated_rate(&self, rate_m_per_h: f64, how: &str) -> String {
+        self.scenario_toml.replacen(
+            &format!("{DRIVE_RATE_MARK}{}", self.drive_rate_m_per_h),
+            &format!("# Calibrated: {how}\ndrive_rate_m_per_h = {rate_m_per_h}"),
+            1,
+        )
+    }
 }
 
 /// File name of the scenario, zones and map folder for `name`.
@@ -209,8 +357,9 @@ pub fn file_names(name: &str) -> (String, String, &'static str) {
     )
 }
 
-/// Metres along a polyline.
-fn along(points: &[[f64; 2]]) -> Vec<f64> {
+/// Metres along a polyline, at each of its points.
+#[must_use]
+pub fn along(points: &[[f64; 2]]) -> Vec<f64> {
     let mut out = Vec::with_capacity(points.len());
     let mut total = 0.0;
     for (i, p) in points.iter().enumerate() {
@@ -242,7 +391,7 @@ fn round1(v: f64) -> f64 {
 /// `2 × half_gap_m` centred on the path: GeoJSON features.
 fn passage_features(name: &str, p: [f64; 2], d: [f64; 2], half_gap_m: f64) -> [String; 2] {
     let n = [-d[1], d[0]];
-    let (thick, reach) = (20.0, 250.0);
+    let (thick, reach) = (20.0, PASSAGE_REACH_M);
     let block = |side: f64, label: &str| {
         let corner = |u: f64, v: f64| {
             [
@@ -278,7 +427,7 @@ pub fn import(layer: &TraverseLayer, opts: &ImportOptions) -> Result<Imported, S
     let range = layer.sols(opts.sols.clone())?;
     let first = *opts.sols.start();
     let last = *opts.sols.end();
-    let mut findings: Vec<String> = range.findings.iter().map(ToString::to_string).collect();
+    let findings: Vec<String> = range.findings.iter().map(ToString::to_string).collect();
 
     // Map placement: the range's first recorded point at a provisional map origin, then the
     // whole route shifted so the map starts `map_margin_m` west and south of it.
@@ -412,6 +561,7 @@ pub fn import(layer: &TraverseLayer, opts: &ImportOptions) -> Result<Imported, S
             science_stop: false,
             no_relay_pass: p.is_some_and(|p| p.no_relay_pass),
             note: String::new(),
+            from_fix: false,
         });
     }
     // Metres without VO: from paper 000's radii on 383-385 (historic input), on 717-719 from
@@ -501,56 +651,30 @@ pub fn import(layer: &TraverseLayer, opts: &ImportOptions) -> Result<Imported, S
         }
     }
 
-    // Passages: one into every drive sol the ground planned from a known position.
-    let mut zones: Vec<String> = Vec::new();
-    let mut last_passage = f64::NEG_INFINITY;
+    // Which drive sols the ground planned from a known position (the passage rule's sols).
     let cal = calendar(&science_stop);
     let mut last_drive: Option<usize> = None;
     let mut from_fix = true;
-    let mut passages = 0usize;
-    for (i, x) in sols.iter().enumerate() {
+    for (i, x) in sols.iter_mut().enumerate() {
         if cal.sols[i].uplink && last_drive.is_none_or(|d| cal.data_available(d, Some(i))) {
             from_fix = true;
         }
         if x.distance_m <= 0.0 {
             continue;
         }
-        let start = sol_start_along[i];
-        if x.no_path {
-            // The fault: a passage where the record stopped, closing at paper 000's radius.
-            let stop = start + range.sols[i].length_m();
-            let (p, d) = point_at(&path_m, &cum, stop + 2.0);
-            let half = PAPER_000_385_FAULT_R_M + opts.footprint_radius_m;
-            zones.extend(passage_features(
-                &format!("sol {} passage (NO_PATH, paper 000 Fig. 4)", x.sol),
-                p,
-                d,
-                half,
-            ));
-            passages += 1;
-            last_passage = stop;
-        } else if from_fix
-            && range.sols[i].length_m() > 2.0 * opts.passage_into_sol_m
-            && start + opts.passage_into_sol_m - last_passage >= opts.passage_spacing_m
-        {
-            let at = start + opts.passage_into_sol_m;
-            let (p, d) = point_at(&path_m, &cum, at);
-            let half = opts.passage_clearance_m + opts.footprint_radius_m;
-            zones.extend(passage_features(
-                &format!("sol {} passage ({at:.0} m along the route)", x.sol),
-                p,
-                d,
-                half,
-            ));
-            passages += 1;
-            last_passage = at;
-        }
+        x.from_fix = from_fix;
         from_fix = false;
         last_drive = Some(i);
     }
-    findings.push(format!(
-        "{passages} passages placed by the import rule (a modelling choice)"
-    ));
+    // First placement: each sol's start where its recorded path starts, on the route.
+    let route_cum = along(&waypoints);
+    let sol_starts_on_route: Vec<f64> = sol_start_along
+        .iter()
+        .map(|&s| {
+            let (p, _) = point_at(&path_m, &cum, s);
+            project_onto(&waypoints, &route_cum, p)
+        })
+        .collect();
 
     // Calibrated drive rate: the record's metres over hours, drives with a whole window.
     let (mut metres, mut hours, mut n) = (0.0, 0.0, 0usize);
@@ -684,21 +808,24 @@ pub fn import(layer: &TraverseLayer, opts: &ImportOptions) -> Result<Imported, S
     );
     let _ = writeln!(
         t,
-        "# - calibrated: the AutoNav rate, {drive_rate} m/h = the record's {metres:.1} m over {hours:.2} h of its {n} drives"
-    );
-    let _ = writeln!(t, "#   with a whole window in this range.");
-    let _ = writeln!(
-        t,
-        "# - modelling choice: the procedural map and {passages} passages (keep-out pairs), by the import rule:"
+        "# - measured: the record's own speed, {drive_rate} m/h = {metres:.1} m over {hours:.2} h of its {n} drives with a"
     );
     let _ = writeln!(
         t,
-        "#   {} m into every drive sol planned from a known position, at least {} m apart,",
+        "#   whole window in this range; calibrated from it: the AutoNav rate ([rover])."
+    );
+    let _ = writeln!(
+        t,
+        "# - modelling choice: the procedural map and the passages (keep-out pairs) of the zones file, by"
+    );
+    let _ = writeln!(
+        t,
+        "#   the import rule: where the replay, run without them, is {} m into every drive sol planned from a known position, at least {} m apart,",
         opts.passage_into_sol_m, opts.passage_spacing_m
     );
     let _ = writeln!(
         t,
-        "#   clearance {} m; at a historic NO_PATH, where the record stopped, closing at paper 000's radius.",
+        "#   clearance {} m; at a historic NO_PATH, 20 m past the paper's distance into the sol, closing at paper 000's radius.",
         opts.passage_clearance_m
     );
     let _ = writeln!(
@@ -724,13 +851,10 @@ pub fn import(layer: &TraverseLayer, opts: &ImportOptions) -> Result<Imported, S
         t,
         "[map]\nappearance = \"{map_dir}/appearance.tif\"\ndem = \"{map_dir}/dem.tif\"\nterrain = \"{map_dir}/terrain.tif\"\nzones = {zones_file:?}\n"
     );
+    let _ = writeln!(t, "[grid]\nresolution_m = 2.0\nmax_slope_deg = 25.0\n");
     let _ = writeln!(
         t,
-        "[grid]\nresolution_m = {resolution}\nmax_slope_deg = 25.0\n"
-    );
-    let _ = writeln!(
-        t,
-        "[rover]\nfootprint_radius_m = {}\ndrive_rate_m_per_h = {drive_rate}\nstep_m = 2.0\n",
+        "[rover]\nfootprint_radius_m = {}\n{DRIVE_RATE_MARK}{drive_rate}\nstep_m = 2.0\n",
         opts.footprint_radius_m
     );
     let _ = writeln!(
@@ -809,19 +933,19 @@ pub fn import(layer: &TraverseLayer, opts: &ImportOptions) -> Result<Imported, S
             );
         }
     }
-    let zones_geojson = format!(
-        "{{\"type\": \"FeatureCollection\", \"features\": [\n{}\n]}}\n",
-        zones.join(",\n")
-    );
-    Ok(Imported {
+    let mut imported = Imported {
         scenario_toml: t,
-        zones_geojson,
+        zones_geojson: String::new(),
         recipe_toml: recipe,
         sols,
         findings,
         drive_rate_m_per_h: drive_rate,
         route_length_m: total_m,
-    })
+        route_m: waypoints,
+        options: opts.clone(),
+    };
+    imported.zones_geojson = imported.place_passages(&sol_starts_on_route).0;
+    Ok(imported)
 }
 
 #[cfg(test)]

@@ -71,6 +71,26 @@ const MAX_NAME_CHARS: usize = 100;
 /// Sols in one scenario (about 15 Mars years).
 const MAX_SOLS: usize = 10_000;
 
+/// Whether `name` can name a scenario (it becomes output file and directory names); `Err` says
+/// what is expected.
+///
+/// # Errors
+/// The expectation, when `name` is empty, `.` or `..`, too long, or holds a path separator or a
+/// control character.
+pub fn check_name(name: &str) -> Result<(), String> {
+    if name.trim().is_empty()
+        || matches!(name.trim(), "." | "..")
+        || name.chars().count() > MAX_NAME_CHARS
+        || name.contains(['/', '\\'])
+        || maps::input_file::first_unsafe_char(name).is_some()
+    {
+        return Err(format!(
+            "a name usable as a directory name: 1 ..= {MAX_NAME_CHARS} characters, not \".\" or \"..\", without path separators or control characters"
+        ));
+    }
+    Ok(())
+}
+
 /// A scenario file, validated, before its maps are read: stage one of [`Scenario::load`].
 #[derive(Debug)]
 pub struct ScenarioSpec {
@@ -417,18 +437,11 @@ impl ScenarioSpec {
         let base = path.parent().unwrap_or(Path::new("."));
         // The name becomes output file and directory names (`solsim-out/NAME/`): `.` and `..`
         // name the directory itself or its parent, and failed only at write time.
-        if raw.name.trim().is_empty()
-            || matches!(raw.name.trim(), "." | "..")
-            || raw.name.chars().count() > MAX_NAME_CHARS
-            || raw.name.contains(['/', '\\'])
-            || maps::input_file::first_unsafe_char(&raw.name).is_some()
-        {
+        if let Err(expected) = check_name(&raw.name) {
             return Err(ScenarioError::field(
                 path,
                 "name",
-                format!(
-                    "a name usable as a directory name: 1 ..= {MAX_NAME_CHARS} characters, not \".\" or \"..\", without path separators or control characters"
-                ),
+                expected,
                 format!("{:?}", raw.name),
             ));
         }

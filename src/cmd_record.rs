@@ -1,0 +1,308 @@
+//! `solsim record`: the public record of Perseverance's drives.
+//!
+//! - `record import --sols FIRST-LAST --out DIR`: a replay scenario for any sol range
+//!   ([`study::record_import`]), its zones, and the procedural map around it, written as one
+//!   output set.
+//! - `record baseline SCENARIO`: `ground` beside the record ([`study::baseline`]).
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use anyhow::Context as _;
+use clap::{Args, Subcommand};
+use maps::MemoryBudget;
+use study::record::{TraverseLayer, parse_sol_range};
+use study::record_import::{ImportOptions, file_names, import};
+
+use crate::output_set::OutputSet;
+
+/// The bundled traverse layer, relative to the repository.
+pub const BUNDLED_TRAVERSE: &str = "data/m20/M20_traverse.json";
+
+/// Ground re-simulations per step of the import's drive-rate calibration.
+pub const CALIBRATION_RUNS: u64 = 20;
+
+/// `solsim record`.
+#[derive(Subcommand)]
+pub enum RecordCommand {
+    /// Write a replay scenario for a sol range of the record: scenario TOML, zones GeoJSON and a
+    /// procedural map (GeoTIFFs with the Jezero CRS) in --out.
+    ///
+    /// Per sol: the historic distance (paper 000's odometry where it gives one, the record's
+    /// length otherwise, each marked in `historic_source`), the drive's window in LMST from the
+    /// spacecraft clock (Mars24), the route along the recorded path in map metres, the calendar
+    /// computed from Mars time ([calendar]); idle sols the calendar does not explain become
+    /// historic science stops. Re-filed drives, cumulative entries and entries spanning idle
+    /// sols are handled and listed. Keep-out passages are placed by a written rule (a
+    /// modelling choice: the record has no zones); the scenario's header says what comes from
+    /// where.
+    Import(ImportArgs),
+    /// Set the ground strategy beside the record of a scenario: per sol, the planning day, the
+    /// record's metres, what the calendar's rule decides for ground, what simulated ground
+    /// drove (run 0) and how often (over --runs), and who drove: both, record only, model only.
+    ///
+    /// Every sol the team drove, ground must be able to drive: a baseline more cautious than
+    /// reality inflates every gain credited to onboard localization. Disagreements are listed
+    /// with the rule that decided them.
+    Baseline(BaselineArgs),
+}
+
+/// `solsim record import`.
+#[derive(Args)]
+pub struct ImportArgs {
+    /// The sols, `FIRST-LAST` (e.g. 379-409), within the record.
+    #[arg(long, value_name = "FIRST-LAST")]
+    sols: String,
+    /// Output directory (a new or empty directory, or an earlier import): the scenario,
+    /// zones, map/ and import-report.txt.
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
+    /// The traverse layer (GeoJSON, NASA's MMGIS `M20_traverse.json`).
+    #[arg(long, value_name = "FILE", default_value = BUNDLED_TRAVERSE)]
+    record: PathBuf,
+    /// Scenario name (default record-FIRST-LAST).
+    #[arg(long)]
+    name: Option<String>,
+    /// Scenario and map seed (default the first sol).
+    #[arg(long)]
+    seed: Option<u64>,
+    /// Use the record's lengths everywhere, not paper 000's odometry where it gives one.
+    #[arg(long)]
+    record_odometry: bool,
+    /// Route past the range along the record's later drives, metres.
+    #[arg(long, value_name = "M", default_value_t = 2000.0)]
+    route_beyond_m: f64,
+}
+
+/// `solsim record baseline`.
+#[derive(Args)]
+pub struct BaselineArgs {
+    /// Scenario with a record (e.g. one written by `record import`).
+    scenario: PathBuf,
+    /// Simulated ground runs (run indices 0..RUNS).
+    #[arg(long, value_name = "N", default_value_t = 20,
+          value_parser = clap::value_parser!(u64).range(1..=10_000))]
+    runs: u64,
+    /// Print JSON instead of the table.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Run `solsim record …`.
+///
+/// # Errors
+/// A record or scenario that cannot be read, a range outside the record, an unusable --out.
+pub fn run(cmd: &RecordCommand, budget: MemoryBudget, out: &mut impl Write) -> anyhow::Result<()> {
+    match cmd {
+        RecordCommand::Import(a) => import_cmd(a, budget, out),
+        RecordCommand::Baseline(a) => baseline_cmd(a, budget, out),
+    }
+}
+
+fn import_cmd(a: &ImportArgs, budget: MemoryBudget, out: &mut impl Write) -> anyhow::Result<()> {
+    let sols = parse_sol_range(&a.sols).map_err(|e| anyhow::anyhow!("--sols: {e}"))?;
+    if !(0.0..=100_000.0).contains(&a.route_beyond_m) {
+        anyhow::bail!(
+            "--route-beyond-m: expected 0 ..= 100000 metres, got {}",
+            a.route_beyond_m
+        );
+    }
+    let mut opts = ImportOptions::new(sols);
+    if let Some(name) = &a.name {
+        study::scenario::check_name(name).map_err(|e| anyhow::anyhow!("--name: {e}"))?;
+        opts.name.clone_from(name);
+    }
+    if let Some(seed) = a.seed {
+        opts.seed = seed;
+    }
+    opts.paper_odometry = !a.record_odometry;
+    opts.route_beyond_m = a.route_beyond_m;
+    OutputSet::check(&a.out)?;
+    let layer = TraverseLayer::read(&a.record)?;
+    let imported = import(&layer, &opts)?;
+    let (scenario_file, zones_file, map_dir) = file_names(&opts.name);
+
+    // The map, from the recipe, checked against the budget like `map generate`.
+    let recipe_path = a.out.join(map_dir).join("recipe.toml");
+    let recipe = study::recipe::recipe_from_toml_str(&recipe_path, &imported.recipe_toml, budget)?;
+    let set = OutputSet::begin(&a.out)?;
+    let progress = crate::progress::Progress::new(
+        false,
+        "record import: map",
+        "rows",
+        maps::procedural::progress_rows(&recipe.terrain),
+    );
+    let layers = maps::procedural::generate_observed(&recipe.terrain, &|| progress.inc());
+    progress.finish();
+    let staging_map = set.staging_path(map_dir)?;
+    layers
+        .write_dir(&staging_map, recipe.dem_datum_m, &recipe.crs)
+        .with_context(|| format!("{}: cannot write the map", a.out.join(map_dir).display()))?;
+    set.write(
+        &format!("{map_dir}/recipe.toml"),
+        imported.recipe_toml.as_bytes(),
+    )?;
+    // Passages: placed where the replay, run without them, starts each sol (the rule of
+    // `study::record_import`).
+    set.write(&scenario_file, imported.scenario_toml.as_bytes())?;
+    set.write(
+        &zones_file,
+        br#"{"type": "FeatureCollection", "features": []}"#,
+    )?;
+    let staged = staging_map
+        .parent()
+        .unwrap_or(&staging_map)
+        .join(&scenario_file);
+    let bare = study::Scenario::load_within(&staged, budget)?;
+    let replay = bare.run_index(sim::Strategy::Replay, 0);
+    let route_cum = study::record_import::along(&imported.route_m);
+    let mut starts = vec![0.0];
+    starts.extend(replay.sols.iter().map(|s| {
+        study::record_import::project_onto(&imported.route_m, &route_cum, s.end_position_m)
+    }));
+    let (zones, passages) = imported.place_passages(&starts);
+    set.write(&zones_file, zones.as_bytes())?;
+    // The AutoNav rate: calibrated on the written scenario so that simulated ground, driving
+    // the record's windows, drives the record's metres per drive sol.
+    let scenario = study::Scenario::load_within(&staged, budget)?;
+    let cal = study::calibrate::calibrate_drive_rate(&scenario, CALIBRATION_RUNS)?;
+    let rate = (cal.calibrated_rate_m_per_h * 10.0).round() / 10.0;
+    let how = format!(
+        "at this rate the simulated ground, driving the record's windows, drives the record's {:.1} m per drive sol (`solsim calibrate drive-rate`, {CALIBRATION_RUNS} runs; the record's own speed is {} m/h)",
+        cal.record_m_per_drive_sol, imported.drive_rate_m_per_h
+    );
+    let scenario_path = set.write(
+        &scenario_file,
+        imported.with_calibrated_rate(rate, &how).as_bytes(),
+    )?;
+    let mut report = String::new();
+    for f in &imported.findings {
+        report.push_str(f);
+        report.push('\n');
+    }
+    report.push_str(&format!("{passages} passages placed by the import rule\n"));
+    set.write("import-report.txt", report.as_bytes())?;
+    set.commit()?;
+
+    let drove = imported.sols.iter().filter(|x| x.distance_m > 0.0).count();
+    let total: f64 = imported.sols.iter().map(|x| x.distance_m).sum();
+    writeln!(
+        out,
+        "wrote {} (+ {zones_file}, {map_dir}/): sols {}-{} of {}: {drove} drive sols, {total:.1} m; route {:.0} m; AutoNav rate {rate} m/h (the record's own speed {} m/h)",
+        scenario_path.display(),
+        opts.sols.start(),
+        opts.sols.end(),
+        layer.name,
+        imported.route_length_m,
+        imported.drive_rate_m_per_h
+    )?;
+    writeln!(
+        out,
+        "{:>5}  {:>9}  {:<13}  source / why not",
+        "sol", "metres", "window LMST"
+    )?;
+    for x in &imported.sols {
+        let window = x.window.as_ref().map_or_else(String::new, |(s, e)| {
+            format!("{}-{e}", s.as_deref().unwrap_or("?"))
+        });
+        let why = if x.distance_m > 0.0 {
+            &x.source
+        } else {
+            &x.note
+        };
+        writeln!(
+            out,
+            "{:>5}  {:>9.2}  {window:<13}  {why}",
+            x.sol, x.distance_m
+        )?;
+    }
+    for f in &imported.findings {
+        writeln!(out, "note: {f}")?;
+    }
+    writeln!(
+        out,
+        "note: {passages} passages placed by the import rule (a modelling choice: the record has no zones)"
+    )?;
+    Ok(())
+}
+
+fn baseline_cmd(
+    a: &BaselineArgs,
+    budget: MemoryBudget,
+    out: &mut impl Write,
+) -> anyhow::Result<()> {
+    let scenario = study::Scenario::load_within(&a.scenario, budget)?;
+    if !scenario.has_history {
+        anyhow::bail!(
+            "{}: sols: expected a scenario with a record (historic_distance_m per sol), got none",
+            a.scenario.display()
+        );
+    }
+    let b = study::baseline::ground_vs_record(&scenario, a.runs);
+    if a.json {
+        writeln!(out, "{}", serde_json::to_string_pretty(&b)?)?;
+        return Ok(());
+    }
+    writeln!(
+        out,
+        "ground beside the record: {} ({} runs of ground; run 0 in the table)",
+        b.scenario, b.runs
+    )?;
+    writeln!(
+        out,
+        "{:>5}  {:<14}  {:>6}  {:>8}  {:>8}  {:>6}  {:<11}  rule",
+        "sol", "planned (PT)", "plan", "record m", "ground m", "drove", "who"
+    )?;
+    for r in &b.rows {
+        let plan = match (r.uplink, r.restricted) {
+            (true, true) => "restr",
+            (true, false) => "uplink",
+            (false, _) => "",
+        };
+        let rule = r
+            .ground_reason
+            .clone()
+            .or_else(|| r.calendar_rule.clone())
+            .unwrap_or_else(|| "drives".to_owned());
+        writeln!(
+            out,
+            "{:>5}  {:<14}  {plan:>6}  {:>8.1}  {:>8.1}  {:>5.0}%  {:<11}  {rule}",
+            r.sol,
+            r.planning_day.as_deref().unwrap_or(""),
+            r.record_m,
+            r.ground_m,
+            100.0 * r.ground_drove_share,
+            r.agreement.name()
+        )?;
+    }
+    use study::baseline::Agreement;
+    let list = |v: Vec<u32>| {
+        if v.is_empty() {
+            "none".to_owned()
+        } else {
+            v.iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
+        }
+    };
+    writeln!(out, "both drove: {}", list(b.sols(Agreement::Both)))?;
+    writeln!(out, "record only: {}", list(b.sols(Agreement::RecordOnly)))?;
+    writeln!(out, "model only: {}", list(b.sols(Agreement::ModelOnly)))?;
+    for r in b
+        .rows
+        .iter()
+        .filter(|r| matches!(r.agreement, Agreement::RecordOnly | Agreement::ModelOnly))
+    {
+        writeln!(
+            out,
+            "disagreement on sol {}: {} (record {:.1} m, ground {:.1} m): {}",
+            r.sol,
+            r.agreement.name(),
+            r.record_m,
+            r.ground_m,
+            r.ground_reason.as_deref().unwrap_or("ground drove")
+        )?;
+    }
+    Ok(())
+}
