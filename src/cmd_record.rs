@@ -19,6 +19,17 @@ use crate::output_set::OutputSet;
 /// The bundled traverse layer, relative to the repository.
 pub const BUNDLED_TRAVERSE: &str = "data/m20/M20_traverse.json";
 
+/// The bundled traverse layer: under the working directory, else in the source tree solsim
+/// was built from.
+fn bundled_traverse() -> PathBuf {
+    let here = PathBuf::from(BUNDLED_TRAVERSE);
+    if here.exists() {
+        here
+    } else {
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(BUNDLED_TRAVERSE)
+    }
+}
+
 /// Ground re-simulations per step of the import's drive-rate calibration.
 pub const CALIBRATION_RUNS: u64 = 20;
 
@@ -57,9 +68,11 @@ pub struct ImportArgs {
     /// zones, map/ and import-report.txt.
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
-    /// The traverse layer (GeoJSON, NASA's MMGIS `M20_traverse.json`).
-    #[arg(long, value_name = "FILE", default_value = BUNDLED_TRAVERSE)]
-    record: PathBuf,
+    /// The traverse layer (GeoJSON, NASA's MMGIS `M20_traverse.json`); default the bundled
+    /// snapshot, data/m20/M20_traverse.json (of the working directory, else of the source tree
+    /// solsim was built from).
+    #[arg(long, value_name = "FILE")]
+    record: Option<PathBuf>,
     /// Scenario name (default record-FIRST-LAST).
     #[arg(long)]
     name: Option<String>,
@@ -118,7 +131,8 @@ fn import_cmd(a: &ImportArgs, budget: MemoryBudget, out: &mut impl Write) -> any
     opts.paper_odometry = !a.record_odometry;
     opts.route_beyond_m = a.route_beyond_m;
     OutputSet::check(&a.out)?;
-    let layer = TraverseLayer::read(&a.record)?;
+    let record = a.record.clone().unwrap_or_else(bundled_traverse);
+    let layer = TraverseLayer::read(&record)?;
     let imported = import(&layer, &opts)?;
     let (scenario_file, zones_file, map_dir) = file_names(&opts.name);
 

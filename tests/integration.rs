@@ -75,6 +75,7 @@ mod package_cli;
 mod plan_cli;
 mod planner_cpsat_agreement;
 mod readme_compare;
+mod record_import;
 mod report_browser;
 mod report_html;
 mod scenario_expectations;

@@ -16,7 +16,8 @@
 //! ([`Mission::sol_of`]): sol 0 is the landing sol, sols start at local midnight at the mission's
 //! reference longitude. Everything here is checked against an independent implementation (the
 //! `marstime` package fed TT from ERFA) over 1000+ instants in `tests/mars_time_mars24.rs`, and
-//! every drive of the public record lands on its filed sol (`tests/record_import.rs`).
+//! every drive of the public record lands on its filed sol (`study::record`'s unit test
+//! `bundled_record_lands_on_its_sols`).
 //!
 //! The Mars24 page's worked examples (unit tests here) use Allison's later constants,
 //! 1.0274912517 d and 0.0009626 sol; the paper's, kept here, give times 0.23 s later in 2000,

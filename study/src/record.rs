@@ -323,7 +323,7 @@ impl TraverseLayer {
                 field_error(
                     path,
                     format!("features[{i}].properties.sol"),
-                    "a sol number 0 ..= 100000",
+                    "a sol number 0 ..= 100000 (a traverse layer's features have sol, fromRMC, toRMC, length, SCLK_START, SCLK_END)",
                     sol,
                 )
             })? as u32;
