@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Add the narrow passages of the rapid-traverse map to its zones file (a modelling choice).
+"""Add the narrow passages of the rapid-traverse map to its zones file (a modelling choice): the
+conjunction scenario's zones (the rapid traverse itself is rebuilt from the record since issue 27).
 
 Paper 000 §8: "if the rover needed to navigate through a narrow region, that had to occur early
 in the drive when the uncertainty remained small enough to enable threading the needle." The
@@ -21,7 +22,7 @@ between one sol's growth at the calibrated 222 m per drive sol (≈ 11 m at 5 %,
 an onboard localization's 1.93 m) and two sols' (≈ 22 m): the passages close on the second sol
 without a localization, as sol 385's did (paper 000 Fig. 4, 23.5 m).
 
-Usage: python3 scenarios/tools/rapid_traverse_passages.py scenarios/rapid-traverse-379-409.zones.geojson
+Usage: python3 scenarios/tools/rapid_traverse_passages.py scenarios/conjunction.zones.geojson
 (rewrites the file in place; idempotent: earlier passage ridges are replaced).
 """
 import json
@@ -38,7 +39,7 @@ CORRIDOR_Y = (700.0, 1300.0)  # beyond the keep-in corridor (780-1210 m)
 
 def main(zones_path: Path) -> None:
     scenario = tomllib.loads(
-        (zones_path.parent / "rapid-traverse-379-409.toml").read_text())
+        (zones_path.parent / "conjunction.toml").read_text())
     route = scenario["route"]["waypoints"]
     along = [0.0]
     for a, b in zip(route, route[1:]):

@@ -71,12 +71,13 @@ pub const VO_FAILURE_RELATIVE: PerTerrain = PerTerrain {
 
 /// Probability that VO fails on a step on soil, which is the expected fraction of distance
 /// driven without VO there. Calibrated to sols 717-719 (paper 000 Fig. 2: 0.289 m of 655.8 m
-/// without VO, 0.044 %): `solsim calibrate vo scenarios/sol717-719.toml` solves
+/// without VO, 0.044 %), on the scenario rebuilt from the public record (issue 27; the earlier
+/// hand-built map gave 2.55e-4): `solsim calibrate vo scenarios/sol717-719.toml` solves
 /// `p_soil × Σ_class share_class × VO_FAILURE_RELATIVE_class / (1 − slip_class) = 0.289 / 655.8`,
 /// the shares being the terrain classes under the re-simulated ground drive (a failed step
 /// charges the commanded length, a VO step the length after slip). `tests/calibration_vo.rs` re-runs
 /// it and checks this value.
-pub const VO_FAILURE_SOIL: f64 = 2.55e-4;
+pub const VO_FAILURE_SOIL: f64 = 3.21e-4;
 
 /// The error model: what the estimate does not know (see the module docs for each term).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
