@@ -22,7 +22,8 @@ pub enum CalibrateCommand {
     /// the same drives, against the record.
     Vo(VoArgs),
     /// The AutoNav drive rate at which the ground strategy, re-simulated, drives as many metres
-    /// per drive sol as the record (the rapid traverse: 5108 m in 23 drive sols, 222 m).
+    /// per drive sol as the record, over the sols both drove to their end (a faulted drive says
+    /// nothing of the rate; the rapid traverse: 4972.7 m in 23 such sols, 216.2 m).
     ///
     /// Bisects the rate; each step runs the ground strategy over run indices 0..RUNS. Prints
     /// the record's metres per drive sol, the scenario's rate and what ground drives at it, and

@@ -87,7 +87,7 @@ fn compare_runs_the_main_job_and_writes_outputs() {
 fn fault_json_has_kind_after_and_uncertainty() {
     let o = solsim()
         .args(["replay", "--json", "--no-files"])
-        .arg(scenario("sol383-386.toml"))
+        .arg(scenario("crater-floor-passage.toml"))
         .output()
         .expect("runs");
     assert!(o.status.success(), "{}", stderr(&o));
@@ -123,7 +123,7 @@ fn fault_json_has_kind_after_and_uncertainty() {
 fn same_seed_gives_byte_identical_json_on_one_and_two_threads() {
     for file in [
         "rapid-traverse-379-409.toml",
-        "sol383-386.toml",
+        "crater-floor-passage.toml",
         "self-reliant-campaign.toml",
     ] {
         let run = |threads: &str| {
@@ -169,7 +169,7 @@ fn regress_passes_on_the_bundled_scenarios_and_writes_junit() {
 #[test]
 fn regress_exits_1_with_a_diff_on_a_mismatch() {
     let dir = tempfile::tempdir().expect("tempdir");
-    let text = std::fs::read_to_string(scenario("sol717-719.toml")).expect("read");
+    let text = std::fs::read_to_string(scenario("crater-floor-717.toml")).expect("read");
     let text = common::rebase(&text).replace(
         "end_uncertainty_m = [32.82, 33.02]",
         "end_uncertainty_m = [10.0, 11.0]",
@@ -211,7 +211,7 @@ fn missing_scenario_file() {
 
 #[test]
 fn unknown_toml_field_names_the_line() {
-    let (o, path, _d) = validate_modified("sol383-386.toml", |t| {
+    let (o, path, _d) = validate_modified("crater-floor-passage.toml", |t| {
         t.replace("drive_rate_m_per_h = 100.0", "drive_rate_m_per_hr = 100.0")
     });
     assert_bad_input(
@@ -226,7 +226,7 @@ fn unknown_toml_field_names_the_line() {
 
 #[test]
 fn wrong_type_names_the_line() {
-    let (o, path, _d) = validate_modified("sol383-386.toml", |t| {
+    let (o, path, _d) = validate_modified("crater-floor-passage.toml", |t| {
         t.replace("step_m = 2.0", "step_m = \"two\"")
     });
     assert_bad_input(&o, &[path.to_str().expect("utf8"), "step_m"]);
@@ -234,7 +234,7 @@ fn wrong_type_names_the_line() {
 
 #[test]
 fn negative_rate_is_rejected() {
-    let (o, path, _d) = validate_modified("sol383-386.toml", |t| {
+    let (o, path, _d) = validate_modified("crater-floor-passage.toml", |t| {
         t.replace("drive_rate_m_per_h = 100.0", "drive_rate_m_per_h = -100.0")
     });
     assert_bad_input(
@@ -250,7 +250,7 @@ fn negative_rate_is_rejected() {
 
 #[test]
 fn nan_is_rejected() {
-    let (o, path, _d) = validate_modified("sol383-386.toml", |t| {
+    let (o, path, _d) = validate_modified("crater-floor-passage.toml", |t| {
         t.replace("k_vo = 0.05", "k_vo = nan")
     });
     assert_bad_input(
@@ -261,7 +261,7 @@ fn nan_is_rejected() {
 
 #[test]
 fn unknown_localizer_is_rejected() {
-    let (o, path, _d) = validate_modified("sol383-386.toml", |t| {
+    let (o, path, _d) = validate_modified("crater-floor-passage.toml", |t| {
         t.replace("localizer = \"census\"", "localizer = \"sextant\"")
     });
     assert_bad_input(
@@ -277,7 +277,7 @@ fn unknown_localizer_is_rejected() {
 
 #[test]
 fn statistical_settings_with_an_image_localizer_are_rejected() {
-    let (o, path, _d) = validate_modified("sol383-386.toml", |t| {
+    let (o, path, _d) = validate_modified("crater-floor-passage.toml", |t| {
         t.replace(
             "localizer = \"census\"",
             "localizer = \"census\"\nmean_error_m = 0.5",
@@ -297,7 +297,7 @@ fn statistical_settings_with_an_image_localizer_are_rejected() {
 fn census_onboard_localization_is_logged_with_hbs_steps_and_timeline() {
     let o = solsim()
         .args(["run", "--strategy", "onboard", "--json", "--no-files"])
-        .arg(scenario("sol383-386.toml"))
+        .arg(scenario("crater-floor-passage.toml"))
         .output()
         .expect("runs");
     assert!(o.status.success(), "{}", stderr(&o));
@@ -342,7 +342,7 @@ fn census_onboard_localization_is_logged_with_hbs_steps_and_timeline() {
 
 #[test]
 fn nan_waypoint_is_rejected() {
-    let (o, _path, _d) = validate_modified("sol383-386.toml", |t| {
+    let (o, _path, _d) = validate_modified("crater-floor-passage.toml", |t| {
         t.replace("[[600.0, 60.0],", "[[nan, 60.0],")
     });
     assert_bad_input(
@@ -356,7 +356,7 @@ fn nan_waypoint_is_rejected() {
 
 #[test]
 fn waypoint_off_the_map_is_rejected() {
-    let (o, path, _d) = validate_modified("sol383-386.toml", |t| {
+    let (o, path, _d) = validate_modified("crater-floor-passage.toml", |t| {
         t.replace("[600.0, 821.0]]", "[600.0, 5000.0]]")
     });
     assert_bad_input(
@@ -372,7 +372,7 @@ fn waypoint_off_the_map_is_rejected() {
 
 #[test]
 fn negative_historic_distance_is_rejected() {
-    let (o, _p, _d) = validate_modified("sol717-719.toml", |t| {
+    let (o, _p, _d) = validate_modified("crater-floor-717.toml", |t| {
         t.replace(
             "historic_distance_m = 226.1",
             "historic_distance_m = -226.1",
@@ -383,7 +383,7 @@ fn negative_historic_distance_is_rejected() {
 
 #[test]
 fn missing_map_file_is_rejected() {
-    let (o, _p, _d) = validate_modified("sol717-719.toml", |t| {
+    let (o, _p, _d) = validate_modified("crater-floor-717.toml", |t| {
         t.replace("crater-floor/dem.tif", "crater-floor/nope.tif")
     });
     assert_bad_input(&o, &["map.dem", "nope.tif", "an existing regular file"]);
@@ -400,10 +400,13 @@ fn self_intersecting_zone_is_rejected() {
             "geometry": {"type": "Polygon", "coordinates": [[[100, 100], [200, 200], [200, 100], [100, 200], [100, 100]]]}}]}"#,
     )
     .expect("write");
-    let (o, _p, _d) = validate_modified("sol717-719.toml", |t| {
+    let (o, _p, _d) = validate_modified("crater-floor-717.toml", |t| {
         let scen = root().join("scenarios");
         t.replace(
-            &format!("zones = \"{}/sol717-719.zones.geojson\"", scen.display()),
+            &format!(
+                "zones = \"{}/crater-floor-717.zones.geojson\"",
+                scen.display()
+            ),
             &format!("zones = {:?}", zones.display().to_string()),
         )
     });
@@ -414,7 +417,7 @@ fn self_intersecting_zone_is_rejected() {
 fn unknown_strategy_is_rejected() {
     let o = solsim()
         .args(["run", "--strategy", "teleport"])
-        .arg(scenario("sol383-386.toml"))
+        .arg(scenario("crater-floor-passage.toml"))
         .output()
         .expect("runs");
     assert_bad_input(&o, &["--strategy", "teleport", "extension+onboard"]);
@@ -429,7 +432,7 @@ fn outputs_are_not_half_written_when_the_directory_is_unwritable() {
     let o = solsim()
         .args(["run", "--out"])
         .arg(&blocker)
-        .arg(scenario("sol717-719.toml"))
+        .arg(scenario("crater-floor-717.toml"))
         .output()
         .expect("runs");
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));

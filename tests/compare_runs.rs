@@ -58,7 +58,7 @@ fn the_one_run_table_comes_first_then_the_section_with_intervals() {
         "Against ground over 8 runs (run indices 0..8 from seed",
         "[95 % bootstrap interval, 10000 resamples]",
         "[95 % Wilson interval]",
-        "study segment (1411 m from sol 402): ground: covered in ",
+        "study segment (1402 m from sol 402): ground: covered in ",
         "  onboard:\n",
         "  extension+onboard:\n",
         "  replay:\n",

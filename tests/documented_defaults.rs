@@ -184,8 +184,9 @@ fn readme_defaults_match_the_code() {
 
 #[test]
 fn scenario_level_defaults_apply_when_fields_are_omitted() {
-    // sol717-719.toml sets no [onboard_localization] or post-drive imaging: the defaults apply.
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/sol717-719.toml");
+    // crater-floor-717.toml sets no [onboard_localization] or post-drive imaging: the defaults apply.
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/crater-floor-717.toml");
     let s = study::Scenario::load(&path).expect("loads");
     assert_eq!(s.campaign.operator_margin_m, 1.0);
     assert_eq!(s.campaign.post_drive_imaging_s, 1800);

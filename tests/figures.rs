@@ -36,7 +36,7 @@ fn compare_svg_with(scenario: &str, out: &std::path::Path, extra: &[&str]) -> St
 #[test]
 fn compare_writes_the_uncertainty_figure() {
     let dir = tempfile::tempdir().expect("tempdir");
-    let svg = compare_svg("scenarios/sol383-386.toml", &dir.path().join("a"));
+    let svg = compare_svg("scenarios/crater-floor-passage.toml", &dir.path().join("a"));
     // Well-formed: parsed by an independent XML parser.
     let parsed = std::process::Command::new("python3")
         .args([
@@ -44,7 +44,7 @@ fn compare_writes_the_uncertainty_figure() {
             "import sys, xml.etree.ElementTree as E; r = E.parse(sys.argv[1]).getroot(); \
              print(r.tag, len(list(r.iter())))",
         ])
-        .arg(dir.path().join("a/sol383-386.uncertainty.svg"))
+        .arg(dir.path().join("a/crater-floor-passage.uncertainty.svg"))
         .output()
         .expect("python3 runs");
     assert!(
@@ -86,7 +86,7 @@ fn compare_writes_the_uncertainty_figure() {
     // The replay faults NO_PATH on sol 385: a red cross (two red strokes).
     assert!(svg.contains("#FF0000"), "the fault marker");
     // Deterministic.
-    let again = compare_svg("scenarios/sol383-386.toml", &dir.path().join("b"));
+    let again = compare_svg("scenarios/crater-floor-passage.toml", &dir.path().join("b"));
     assert_eq!(svg, again);
 }
 
@@ -120,7 +120,7 @@ fn run_doc(dir: &std::path::Path, name: &str) -> serde_json::Value {
 fn compare_writes_maps_metres_and_plan_figures_from_the_run() {
     let dir = tempfile::tempdir().expect("tempdir");
     let out = dir.path().join("a");
-    compare_svg("scenarios/sol383-386.toml", &out);
+    compare_svg("scenarios/crater-floor-passage.toml", &out);
     let names = all_svgs_parse(&out);
     for strategy in [
         "replay",
@@ -130,17 +130,17 @@ fn compare_writes_maps_metres_and_plan_figures_from_the_run() {
         "extension+onboard",
     ] {
         for kind in ["map", "plans"] {
-            let n = format!("sol383-386.{strategy}.{kind}.svg");
+            let n = format!("crater-floor-passage.{strategy}.{kind}.svg");
             assert!(names.contains(&n), "{n} in {names:?}");
         }
     }
-    assert!(names.contains(&"sol383-386.metres.svg".to_string()));
+    assert!(names.contains(&"crater-floor-passage.metres.svg".to_string()));
     let read = |n: &str| std::fs::read_to_string(out.join(n)).expect("figure");
     let text = |svg: &str, t: &str| svg.contains(&format!("\n{t}\n</text>"));
 
     // The replay's map grows the keep-outs by its fault's r (from its JSON) plus the footprint,
     // and marks the NO_PATH on sol 385.
-    let replay = run_doc(&out, "sol383-386.replay.json");
+    let replay = run_doc(&out, "crater-floor-passage.replay.json");
     let fault = replay["sols"]
         .as_array()
         .expect("sols")
@@ -148,7 +148,7 @@ fn compare_writes_maps_metres_and_plan_figures_from_the_run() {
         .find_map(|s| s["fault"].as_object().cloned())
         .expect("the replay faults");
     let r = fault["uncertainty_m"].as_f64().expect("r");
-    let map = read("sol383-386.replay.map.svg");
+    let map = read("crater-floor-passage.replay.map.svg");
     assert!(
         map.contains(&format!("keep-outs grown by r = {r:.2} m")),
         "title names the fault's r {r:.2}"
@@ -176,9 +176,9 @@ fn compare_writes_maps_metres_and_plan_figures_from_the_run() {
         }
     }
     // Ground never faults here: no fault in its legend, r is its largest end-of-sol r.
-    let ground_map = read("sol383-386.ground.map.svg");
+    let ground_map = read("crater-floor-passage.ground.map.svg");
     assert!(!text(&ground_map, "fault"), "no fault legend for ground");
-    let ground = run_doc(&out, "sol383-386.ground.json");
+    let ground = run_doc(&out, "crater-floor-passage.ground.json");
     let max_r = ground["sols"]
         .as_array()
         .expect("sols")
@@ -192,8 +192,8 @@ fn compare_writes_maps_metres_and_plan_figures_from_the_run() {
 
     // The onboard plans: a row per planned sol and an HBS row under each sol that ran the
     // co-processor chain.
-    let onboard = run_doc(&out, "sol383-386.onboard.json");
-    let plans = read("sol383-386.onboard.plans.svg");
+    let onboard = run_doc(&out, "crater-floor-passage.onboard.json");
+    let plans = read("crater-floor-passage.onboard.plans.svg");
     for s in onboard["sols"].as_array().expect("sols") {
         let Some(plan) = s["activity_plan"].as_object() else {
             continue;
@@ -219,7 +219,7 @@ fn compare_writes_maps_metres_and_plan_figures_from_the_run() {
 
     // Metres per sol: one bar per drive sol per strategy (plotters draws each as a <rect> in
     // the strategy's colour; ground is the second colour, #1F77B4).
-    let metres = read("sol383-386.metres.svg");
+    let metres = read("crater-floor-passage.metres.svg");
     let ground_drives = ground["sols"]
         .as_array()
         .expect("sols")
@@ -243,13 +243,22 @@ fn compare_writes_maps_metres_and_plan_figures_from_the_run() {
 fn the_map_grows_the_keep_outs_at_the_asked_r() {
     let dir = tempfile::tempdir().expect("tempdir");
     let out = dir.path().join("a");
-    compare_svg_with("scenarios/sol383-386.toml", &out, &["--map-r-m", "10"]);
-    let map = std::fs::read_to_string(out.join("sol383-386.onboard.map.svg")).expect("map");
+    compare_svg_with(
+        "scenarios/crater-floor-passage.toml",
+        &out,
+        &["--map-r-m", "10"],
+    );
+    let map =
+        std::fs::read_to_string(out.join("crater-floor-passage.onboard.map.svg")).expect("map");
     assert!(map.contains("keep-outs grown by r = 10.00 m"), "asked r");
     for bad in ["-1", "nan", "1e9"] {
         let o = solsim()
             .current_dir(root())
-            .args(["compare", "scenarios/sol383-386.toml", "--no-files"])
+            .args([
+                "compare",
+                "scenarios/crater-floor-passage.toml",
+                "--no-files",
+            ])
             .arg(format!("--map-r-m={bad}"))
             .output()
             .expect("runs");

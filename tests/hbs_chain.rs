@@ -177,7 +177,7 @@ fn the_statistical_localizer_plans_the_flight_size_transfer() {
 #[test]
 fn a_link_rate_that_is_not_a_serial_links_is_refused() {
     for bad in ["0", "-10", "nan", "inf", "1e9", "0.5"] {
-        let (path, _dir) = scenario_copy("sol383-386.toml", |t| {
+        let (path, _dir) = scenario_copy("crater-floor-passage.toml", |t| {
             t.replace(
                 "[onboard_localization]",
                 &format!("[onboard_localization]\nhbs_link_rate_kb_per_s = {bad}"),
@@ -193,7 +193,7 @@ fn a_link_rate_that_is_not_a_serial_links_is_refused() {
             ],
         );
     }
-    let (path, _dir) = scenario_copy("sol383-386.toml", |t| {
+    let (path, _dir) = scenario_copy("crater-floor-passage.toml", |t| {
         t.replace(
             "[onboard_localization]",
             "[onboard_localization]\nhbs_link_rate_kb_per_s = \"fast\"",
@@ -201,7 +201,7 @@ fn a_link_rate_that_is_not_a_serial_links_is_refused() {
     });
     let o = solsim().arg("validate").arg(&path).output().expect("runs");
     assert_bad_input(&o, &["hbs_link_rate_kb_per_s"]);
-    let (path, _dir) = scenario_copy("sol383-386.toml", |t| {
+    let (path, _dir) = scenario_copy("crater-floor-passage.toml", |t| {
         t.replace(
             "[onboard_localization]",
             "[onboard_localization]\nhbs_link_rate_kb_per_s = 40",

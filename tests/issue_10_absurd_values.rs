@@ -9,7 +9,7 @@ use crate::common;
 use common::{assert_bad_input, root, scenario_copy, solsim};
 
 fn validate(edit: impl Fn(String) -> String) -> std::process::Output {
-    let (path, _d) = scenario_copy("sol383-386.toml", edit);
+    let (path, _d) = scenario_copy("crater-floor-passage.toml", edit);
     solsim().arg("validate").arg(&path).output().expect("runs")
 }
 

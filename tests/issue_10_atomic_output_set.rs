@@ -30,14 +30,14 @@ fn seeds_and_count(dir: &Path) -> (Vec<u64>, usize) {
 
 #[test]
 fn a_kill_at_any_moment_leaves_the_old_set_or_the_new_one() {
-    let (old, _a) = scenario_copy("sol717-719.toml", |t| t);
+    let (old, _a) = scenario_copy("crater-floor-717.toml", |t| t);
     let seed_line = |t: &str| {
         t.lines()
             .find(|l| l.starts_with("seed = "))
             .expect("seed")
             .to_string()
     };
-    let (new, _b) = scenario_copy("sol717-719.toml", |t| {
+    let (new, _b) = scenario_copy("crater-floor-717.toml", |t| {
         let line = seed_line(&t);
         t.replace(&line, "seed = 987654321")
     });
@@ -92,7 +92,7 @@ fn a_directory_with_other_files_is_not_replaced() {
     std::fs::write(dir.path().join("notes.txt"), b"mine").expect("write");
     let o = solsim()
         .arg("run")
-        .arg(common::root().join("scenarios/sol717-719.toml"))
+        .arg(common::root().join("scenarios/crater-floor-717.toml"))
         .arg("--out")
         .arg(dir.path())
         .output()

@@ -12,7 +12,7 @@ use common::{assert_bad_input, scenario_copy, solsim, stderr};
 const MAX_LINE_CHARS: usize = 400;
 
 fn validate(edit: impl Fn(String) -> String) -> std::process::Output {
-    let (path, _d) = scenario_copy("sol383-386.toml", edit);
+    let (path, _d) = scenario_copy("crater-floor-passage.toml", edit);
     solsim().arg("validate").arg(&path).output().expect("runs")
 }
 
@@ -30,13 +30,18 @@ fn assert_short(o: &std::process::Output) {
 fn a_one_megabyte_name_is_refused_in_a_short_line() {
     // 1 MB, as in the report (under the 1 MiB cap on TOML inputs).
     let long = "x".repeat(1_000_000);
-    let o = validate(|t| t.replace("name = \"sol383-386\"", &format!("name = \"{long}\"")));
+    let o = validate(|t| {
+        t.replace(
+            "name = \"crater-floor-passage\"",
+            &format!("name = \"{long}\""),
+        )
+    });
     assert_bad_input(&o, &["name", "1 ..= 100 characters", "…"]);
     assert_short(&o);
     // A syntax error on a long line quotes an excerpt of it (below the `name` line: above a
     // key the format knows, nothing of a file is quoted, issue 26).
     let o = validate(|t| t.replace("seed = 385", &format!("seed = \"{long}\" oops")));
-    let text = std::fs::read_to_string(common::root().join("scenarios/sol383-386.toml"))
+    let text = std::fs::read_to_string(common::root().join("scenarios/crater-floor-passage.toml"))
         .expect("read the scenario");
     let line = 1 + text
         .lines()

@@ -12,7 +12,7 @@ use study::{Scenario, ScenarioError};
 
 #[test]
 fn a_waypoint_within_rounding_of_the_south_edge_is_a_field_error() {
-    let (path, _dir) = common::scenario_copy("sol383-386.toml", |t| {
+    let (path, _dir) = common::scenario_copy("crater-floor-passage.toml", |t| {
         assert!(t.contains("waypoints = [[600.0, 60.0],"));
         t.replace(
             "waypoints = [[600.0, 60.0],",
@@ -33,7 +33,7 @@ fn a_waypoint_within_rounding_of_the_south_edge_is_a_field_error() {
 
 #[test]
 fn a_waypoint_just_inside_the_edge_still_loads() {
-    let (path, dir) = common::scenario_copy("sol383-386.toml", |t| {
+    let (path, dir) = common::scenario_copy("crater-floor-passage.toml", |t| {
         t.replace("waypoints = [[600.0, 60.0],", "waypoints = [[600.0, 0.5],")
     });
     // The scenario's keep-in corridor starts 20 m north of the edge, and a start outside it is

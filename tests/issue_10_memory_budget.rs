@@ -1,5 +1,5 @@
 //! Issue 10: sizes an input asks for were allocated before anything checked them —
-//! `[grid] resolution_m = 0.05` in `scenarios/sol383-386.toml` climbed to 6.4 GB and aborted
+//! `[grid] resolution_m = 0.05` in `scenarios/crater-floor-passage.toml` climbed to 6.4 GB and aborted
 //! (exit 134, `memory allocation of 2304000000 bytes failed`), 0.01 aborted at once; a recipe
 //! of 20 000 × 20 000 px reached 8 GB and aborted; a 2 MB PNG of 46 000 × 46 000 zeros
 //! decoded to 4 GB before it was rejected. One memory budget per command (default 2 GiB,
@@ -18,7 +18,7 @@ const LIMIT: Duration = Duration::from_secs(30);
 #[test]
 fn a_grid_of_5_cm_cells_is_refused_by_the_budget() {
     for (cell, cells) in [("0.05", "576000000 cells"), ("0.01", "14400000000 cells")] {
-        let (path, _d) = scenario_copy("sol383-386.toml", |t| {
+        let (path, _d) = scenario_copy("crater-floor-passage.toml", |t| {
             t.replace("resolution_m = 1.0", &format!("resolution_m = {cell}"))
         });
         let o = output_within(solsim().arg("validate").arg(&path), LIMIT);
@@ -36,7 +36,7 @@ fn a_grid_of_5_cm_cells_is_refused_by_the_budget() {
 
 #[test]
 fn the_budget_is_a_flag_and_counts_the_maps_and_the_grid() {
-    let scenario = root().join("scenarios/sol383-386.toml");
+    let scenario = root().join("scenarios/crater-floor-passage.toml");
     let o = output_within(
         solsim()
             .args(["validate", "--memory-budget-mib", "16"])
@@ -118,7 +118,9 @@ fn a_46000_px_png_map_layer_is_refused_from_its_header() {
     let dir = tempfile::tempdir().expect("tempdir");
     let png = dir.path().join("appearance.png");
     std::fs::write(&png, huge_png(46_000)).expect("write");
-    let (path, _d) = scenario_copy("sol383-386.toml", |t| common::with_png_appearance(&t, &png));
+    let (path, _d) = scenario_copy("crater-floor-passage.toml", |t| {
+        common::with_png_appearance(&t, &png)
+    });
     let o = output_within(solsim().arg("validate").arg(&path), LIMIT);
     assert_bad_input(
         &o,

@@ -1,4 +1,4 @@
-//! Issue 10: `solsim map package scenarios/sol383-386.toml` (default options) panicked, exit 101:
+//! Issue 10: `solsim map package scenarios/crater-floor-passage.toml` (default options) panicked, exit 101:
 //! `src/cmd_package.rs: range start index 495712 out of range for slice of length 495616`.
 //!
 //! The route starts 60 m from the map's south edge, so the 100 m corridor crosses it. A render
@@ -64,7 +64,7 @@ fn corridor_across_the_south_edge_is_packaged() {
     let out = dir.path().join("pkg");
     // The reported command; 1 m appearance pixels only to keep the test short (the same blocks
     // are rendered at 25 cm either way).
-    let scenario = root().join("scenarios/sol383-386.toml");
+    let scenario = root().join("scenarios/crater-floor-passage.toml");
     let o = package(&scenario, &out, &["--resolution-m", "1"]);
     let m = assert_packaged(&o, &out);
 
@@ -128,14 +128,15 @@ fn corridor_across_the_south_edge_is_packaged() {
     );
 }
 
-/// The bundled sol383-386 scenario with `route` instead of its own, a coarse planning grid and
+/// The bundled crater-floor-passage scenario with `route` instead of its own, a coarse planning grid and
 /// no zones (its keep-in corridor does not reach the map's corners, and a start outside the
 /// keep-in is refused: issue 13), written into `dir` (its map paths made absolute).
 fn scenario_with_route(dir: &Path, route: [[f64; 2]; 2]) -> PathBuf {
     let scenarios = root().join("scenarios");
     let zones = dir.join("no-zones.geojson");
     std::fs::write(&zones, r#"{"type": "FeatureCollection", "features": []}"#).expect("zones");
-    let text = std::fs::read_to_string(scenarios.join("sol383-386.toml")).expect("scenario");
+    let text =
+        std::fs::read_to_string(scenarios.join("crater-floor-passage.toml")).expect("scenario");
     let text: String = text
         .lines()
         .map(|line| match line.split_once(" = \"") {

@@ -104,7 +104,7 @@ fn a_fifo_as_a_map_layer_is_refused_without_blocking() {
             .expect("mkfifo")
             .success()
     );
-    let (path, _d) = common::scenario_copy("sol383-386.toml", |t| {
+    let (path, _d) = common::scenario_copy("crater-floor-passage.toml", |t| {
         let dem = t
             .lines()
             .find(|l| l.starts_with("dem = "))

@@ -54,11 +54,11 @@ fn axis_scale(labels: &[(f64, f64)]) -> f64 {
 fn maps_have_equal_scale_and_gantt_bars_sit_at_their_lmst() {
     let dir = tempfile::tempdir().expect("tempdir");
     let out = dir.path().join("a");
-    compare_svg("scenarios/sol383-386.toml", &out);
+    compare_svg("scenarios/crater-floor-passage.toml", &out);
     let read = |n: &str| std::fs::read_to_string(out.join(n)).expect("figure");
     for name in [
-        "sol383-386.ground.map.svg",
-        "sol383-386.replay.fault-sol385.map.svg",
+        "crater-floor-passage.ground.map.svg",
+        "crater-floor-passage.replay.fault-sol385.map.svg",
     ] {
         let t = texts(&read(name));
         let numeric: Vec<(f64, f64, f64)> = t
@@ -88,7 +88,7 @@ fn maps_have_equal_scale_and_gantt_bars_sit_at_their_lmst() {
     // The onboard plans: sol 383's heating starts at 11:01 LMST (its JSON); on the chart its
     // bar's left edge lies at 11:01 between the 11:00 and 12:00 ticks (a Mars hour is
     // 3698.96 s, not 3600).
-    let onboard = run_doc(&out, "sol383-386.onboard.json");
+    let onboard = run_doc(&out, "crater-floor-passage.onboard.json");
     let heating = onboard["sols"][0]["activity_plan"]["timeline"]
         .as_array()
         .expect("timeline")
@@ -99,7 +99,7 @@ fn maps_have_equal_scale_and_gantt_bars_sit_at_their_lmst() {
     let start = heating["start_lmst"].as_str().expect("LMST");
     let (h, m) = start.split_once(':').expect("HH:MM");
     let hours: f64 = h.parse::<f64>().expect("h") + m.parse::<f64>().expect("m") / 60.0;
-    let svg = read("sol383-386.onboard.plans.svg");
+    let svg = read("crater-floor-passage.onboard.plans.svg");
     let t = texts(&svg);
     let tick = |label: &str| {
         t.iter()

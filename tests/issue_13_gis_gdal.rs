@@ -10,7 +10,7 @@
 //! each fault's r — in Mars longitude/latitude (`.geojson`: each run's paths beside its JSON,
 //! the other layers in `gis/`) and in the map's projected CRS (`gis/projected/`, `.geojson` +
 //! `.prj`). Checked here with GDAL's own tools (gdal-bin), on
-//! `solsim compare scenarios/sol383-386.toml` and a `solsim map package` of it:
+//! `solsim compare scenarios/crater-floor-passage.toml` and a `solsim map package` of it:
 //!
 //! - every layer and every bundled GeoTIFF reports a Mars CRS (a sphere of 3 396 190 m, not
 //!   WGS 84); the projected layers, their `.prj` files and the GeoTIFFs report the same one;
@@ -243,7 +243,7 @@ fn vectors_and_rasters_report_one_mars_crs_and_overlap() {
     let out = dir.path().join("out");
     let o = solsim()
         .arg("compare")
-        .arg(root().join("scenarios/sol383-386.toml"))
+        .arg(root().join("scenarios/crater-floor-passage.toml"))
         .arg("--out")
         .arg(&out)
         .output()
@@ -291,7 +291,10 @@ fn vectors_and_rasters_report_one_mars_crs_and_overlap() {
     let tif_wkt = dir.path().join("map.wkt");
     std::fs::write(&tif_wkt, gdal("gdalsrsinfo", &["-o", "wkt2", s(&tif)])).expect("write");
 
-    let mut stems: Vec<String> = vec!["sol383-386.route".into(), "sol383-386.zones".into()];
+    let mut stems: Vec<String> = vec![
+        "crater-floor-passage.route".into(),
+        "crater-floor-passage.zones".into(),
+    ];
     for strategy in [
         "replay",
         "ground",
@@ -299,7 +302,7 @@ fn vectors_and_rasters_report_one_mars_crs_and_overlap() {
         "extension",
         "extension+onboard",
     ] {
-        let base = format!("sol383-386.{strategy}");
+        let base = format!("crater-floor-passage.{strategy}");
         for layer in ["", ".ellipses", ".faults", ".fault-zones"] {
             stems.push(format!("{base}{layer}"));
         }
@@ -350,7 +353,10 @@ fn vectors_and_rasters_report_one_mars_crs_and_overlap() {
     assert!(non_empty >= 12, "{non_empty} non-empty layers");
     assert!(faults >= 1, "the replay's sol 385 NO_PATH is a fault");
     // And to the GeoTIFF's own CRS (from the file, not the .prj).
-    for stem in ["sol383-386.route", "sol383-386.replay.fault-zones"] {
+    for stem in [
+        "crater-floor-passage.route",
+        "crater-floor-passage.replay.fault-zones",
+    ] {
         assert_reprojects_onto(
             &lonlat_file(&out, stem),
             &tif_wkt,
@@ -361,7 +367,8 @@ fn vectors_and_rasters_report_one_mars_crs_and_overlap() {
     }
     // The grown zones name their r.
     let zones: Value = serde_json::from_slice(
-        &std::fs::read(out.join("gis/sol383-386.replay.fault-zones.geojson")).expect("read"),
+        &std::fs::read(out.join("gis/crater-floor-passage.replay.fault-zones.geojson"))
+            .expect("read"),
     )
     .expect("json");
     let f = &zones["features"][0]["properties"];
@@ -377,7 +384,7 @@ fn a_package_tile_with_its_world_file_reports_the_crs_and_extent() {
     let dir = tempfile::tempdir().expect("tempdir");
     let out = dir.path().join("pkg");
     let o = package(
-        &root().join("scenarios/sol383-386.toml"),
+        &root().join("scenarios/crater-floor-passage.toml"),
         &out,
         &[
             "--corridor-m",
@@ -446,7 +453,7 @@ fn gis_layers_are_the_same_bytes_on_a_rerun() {
         let out = dir.path().join(name);
         let o = solsim()
             .args(["run", "--strategy", "replay"])
-            .arg(root().join("scenarios/sol383-386.toml"))
+            .arg(root().join("scenarios/crater-floor-passage.toml"))
             .arg("--out")
             .arg(&out)
             .output()
@@ -484,7 +491,7 @@ fn gis_layers_are_the_same_bytes_on_a_rerun() {
 /// files say so.
 #[test]
 fn a_map_without_a_mars_crs_is_placed_at_the_landing_site_and_says_so() {
-    let (path, dir) = common::scenario_copy("sol383-386.toml", |t| {
+    let (path, dir) = common::scenario_copy("crater-floor-passage.toml", |t| {
         common::replace_line(
             &t,
             "appearance = ",
@@ -506,7 +513,7 @@ fn a_map_without_a_mars_crs_is_placed_at_the_landing_site_and_says_so() {
         .expect("runs");
     assert!(o.status.success(), "{}", stderr(&o));
     let doc: Value = serde_json::from_slice(
-        &std::fs::read(out.join("gis/sol383-386.route.geojson")).expect("route"),
+        &std::fs::read(out.join("gis/crater-floor-passage.route.geojson")).expect("route"),
     )
     .expect("json");
     let note = doc["crs_note"].as_str().expect("note");

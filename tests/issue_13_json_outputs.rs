@@ -31,8 +31,9 @@ fn regress_json(dir: &std::path::Path, code: i32) -> Value {
 #[test]
 fn regress_json_lists_each_case_and_keeps_the_exit_code() {
     let dir = tempfile::tempdir().expect("tempdir");
-    let text =
-        rebase(&std::fs::read_to_string(root().join("scenarios/sol717-719.toml")).expect("read"));
+    let text = rebase(
+        &std::fs::read_to_string(root().join("scenarios/crater-floor-717.toml")).expect("read"),
+    );
     std::fs::write(dir.path().join("a.toml"), &text).expect("write");
     let v = regress_json(dir.path(), 0);
     assert_eq!(v["passed"], 3);
@@ -90,7 +91,7 @@ fn map_package_json_describes_the_files_written() {
         .args([
             "map",
             "package",
-            "scenarios/sol717-719.toml",
+            "scenarios/crater-floor-717.toml",
             "--resolution-m",
             "1",
         ])

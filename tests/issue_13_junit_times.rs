@@ -19,9 +19,9 @@ fn junit_testcase_times_are_each_cases_share() {
     let read =
         |f: &str| rebase(&std::fs::read_to_string(root().join("scenarios").join(f)).expect("read"));
     // Three checks of one run.
-    std::fs::write(dir.path().join("a.toml"), read("sol717-719.toml")).expect("write");
+    std::fs::write(dir.path().join("a.toml"), read("crater-floor-717.toml")).expect("write");
     // Two statistical entries sharing one 10-run sweep, one with a sweep of its own.
-    let text = read("sol383-386.toml");
+    let text = read("crater-floor-passage.toml");
     let head = &text[..text.find("\n[[expect]]").expect("an expect")];
     let stat = |what: &str, extra: &str| {
         format!(
@@ -73,9 +73,9 @@ fn junit_testcase_times_are_each_cases_share() {
             .unwrap_or_else(|| panic!("{name} in {xml}"))
             .1
     };
-    let one_run = time_of("sol717-719/expect[0]");
+    let one_run = time_of("crater-floor-717/expect[0]");
     assert!(
-        (time_of("sol717-719/expect[1]") - one_run).abs() < 0.002,
+        (time_of("crater-floor-717/expect[1]") - one_run).abs() < 0.002,
         "{xml}"
     );
     assert!(

@@ -77,7 +77,7 @@ fn map_package_draws_a_bar_on_a_terminal_only() {
         [
             "map",
             "package",
-            "scenarios/sol717-719.toml",
+            "scenarios/crater-floor-717.toml",
             "--out",
             o,
             "--resolution-m",
@@ -109,7 +109,13 @@ fn a_piped_sweep_prints_no_progress() {
     let dir = tempfile::tempdir().expect("tempdir");
     let o = solsim()
         .current_dir(root())
-        .args(["sweep", "scenarios/sol717-719.toml", "--runs", "3", "--out"])
+        .args([
+            "sweep",
+            "scenarios/crater-floor-717.toml",
+            "--runs",
+            "3",
+            "--out",
+        ])
         .arg(dir.path().join("s"))
         .output()
         .expect("runs");

@@ -16,15 +16,18 @@ fn read(p: &Path) -> String {
 fn report_names_a_zones_file_edited_since_the_run() {
     let dir = tempfile::tempdir().expect("tempdir");
     let run = dir.path().join("run");
-    run_ok(&["compare", "scenarios/sol383-386.toml", "--out"], &[&run]);
+    run_ok(
+        &["compare", "scenarios/crater-floor-passage.toml", "--out"],
+        &[&run],
+    );
     let out = dir.path().join("report");
     let report = |d: &Path, extra: &[&str]| common::report(d, &out, extra);
     // A zones file edited since the run (the scenario itself unchanged): named.
     let zones_dir = tempfile::tempdir().expect("tempdir");
     let zones_copy = zones_dir.path().join("zones.geojson");
-    let zones_text = read(&root().join("scenarios/sol383-386.zones.geojson"));
+    let zones_text = read(&root().join("scenarios/crater-floor-passage.zones.geojson"));
     std::fs::write(&zones_copy, zones_text.replacen("[", "[ ", 1)).expect("write");
-    let (moved, _keep2) = common::scenario_copy("sol383-386.toml", |t| {
+    let (moved, _keep2) = common::scenario_copy("crater-floor-passage.toml", |t| {
         common::replace_line(
             &t,
             "zones = ",

@@ -16,7 +16,10 @@ fn read(p: &Path) -> String {
 fn report_out_never_replaces_the_run() {
     let dir = tempfile::tempdir().expect("tempdir");
     let run = dir.path().join("run");
-    run_ok(&["compare", "scenarios/sol383-386.toml", "--out"], &[&run]);
+    run_ok(
+        &["compare", "scenarios/crater-floor-passage.toml", "--out"],
+        &[&run],
+    );
     let twin = dir.path().join("twin");
     std::fs::create_dir(&twin).expect("mkdir");
     std::fs::write(twin.join("notes.txt"), "mine").expect("write");
@@ -41,7 +44,7 @@ fn report_out_never_replaces_the_run() {
         .expect("runs");
     assert_bad_input(&o, &["--out", "other files"]);
     assert!(
-        run.join("sol383-386.ground.json").is_file(),
+        run.join("crater-floor-passage.ground.json").is_file(),
         "the run is intact"
     );
     assert_eq!(read(&twin.join("notes.txt")), "mine");

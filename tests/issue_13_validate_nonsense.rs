@@ -23,7 +23,8 @@ impl Case {
     fn new(waypoints: Option<&str>, zones: Option<&str>) -> Case {
         let dir = tempfile::tempdir().expect("tempdir");
         let mut text = rebase(
-            &std::fs::read_to_string(root().join("scenarios/sol383-386.toml")).expect("read"),
+            &std::fs::read_to_string(root().join("scenarios/crater-floor-passage.toml"))
+                .expect("read"),
         );
         if let Some(w) = waypoints {
             let start = text.find("waypoints = [").expect("waypoints");

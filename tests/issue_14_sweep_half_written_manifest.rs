@@ -23,7 +23,7 @@ fn a_half_written_first_manifest_is_resumed_not_refused() {
         let mut c = solsim();
         c.current_dir(root()).args([
             "sweep",
-            "scenarios/sol717-719.toml",
+            "scenarios/crater-floor-717.toml",
             "--runs",
             "2",
             "--strategies",

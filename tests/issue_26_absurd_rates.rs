@@ -18,7 +18,7 @@ fn validate(base: &str, edit: impl Fn(String) -> String) -> std::process::Output
 
 #[test]
 fn a_drive_rate_of_5e_324_m_per_h_is_refused() {
-    let o = validate("sol383-386.toml", |t| {
+    let o = validate("crater-floor-passage.toml", |t| {
         t.replace("drive_rate_m_per_h = 100.0", "drive_rate_m_per_h = 5e-324")
     });
     assert_bad_input(
@@ -33,7 +33,7 @@ fn a_drive_rate_of_5e_324_m_per_h_is_refused() {
 
 #[test]
 fn a_step_of_5e_324_m_is_refused() {
-    let o = validate("sol383-386.toml", |t| {
+    let o = validate("crater-floor-passage.toml", |t| {
         t.replace("step_m = 2.0", "step_m = 5e-324")
     });
     assert_bad_input(
@@ -46,7 +46,7 @@ fn a_step_of_5e_324_m_is_refused() {
 /// 1000, below its own default.
 #[test]
 fn the_default_hbs_slowdown_may_be_written_out() {
-    let o = validate("sol383-386.toml", |t| {
+    let o = validate("crater-floor-passage.toml", |t| {
         t.replace(
             "localizer = \"census\"",
             "localizer = \"census\"\nhbs_slowdown = 1758.2",
@@ -65,7 +65,8 @@ fn the_default_hbs_slowdown_may_be_written_out() {
 /// nothing, with finite times, instead of driving without a time limit.
 #[test]
 fn a_campaign_built_in_code_is_held_to_the_rover_ranges() {
-    let scenario = study::Scenario::load(&root().join("scenarios/sol383-386.toml")).expect("loads");
+    let scenario =
+        study::Scenario::load(&root().join("scenarios/crater-floor-passage.toml")).expect("loads");
     for (field, set) in [
         (
             "rover.drive_rate_m_per_h",
@@ -355,7 +356,7 @@ fn load_scenario(path: &Path, text: &str) -> Result<(), String> {
 #[test]
 fn every_scenario_rate_and_length_refuses_absurd_values_with_the_field_named() {
     let n = sweep(
-        "scenarios/sol383-386.toml",
+        "scenarios/crater-floor-passage.toml",
         &scenario_fields(),
         load_scenario,
     );

@@ -1,5 +1,5 @@
 //! Issue 26, finding 12: a closed pipe printed `error: Broken pipe` with exit 2
-//! (`solsim compare scenarios/sol383-386.toml | head -1`, `solsim validate … | head -c1`), and
+//! (`solsim compare scenarios/crater-floor-passage.toml | head -1`, `solsim validate … | head -c1`), and
 //! `solsim completions bash` panicked (exit 101). Rust ignores SIGPIPE, so a reader that goes
 //! away is an `EPIPE` write error; the binary's standard output now absorbs it once for every
 //! command: the rest of the output is discarded, the command finishes its work and exits with
@@ -43,11 +43,11 @@ fn assert_quiet_success(args: &[&str]) {
 #[test]
 fn a_closed_pipe_ends_each_command_quietly_with_success() {
     for args in [
-        &["validate", "scenarios/sol383-386.toml"][..],
-        &["validate", "scenarios/sol383-386.toml", "--json"],
+        &["validate", "scenarios/crater-floor-passage.toml"][..],
+        &["validate", "scenarios/crater-floor-passage.toml", "--json"],
         &[
             "run",
-            "scenarios/sol383-386.toml",
+            "scenarios/crater-floor-passage.toml",
             "--strategy",
             "ground",
             "--no-files",
@@ -75,9 +75,14 @@ fn compare_into_a_closed_pipe_still_writes_its_files() {
     let dir = tempfile::tempdir().expect("tempdir");
     let out = dir.path().join("out");
     let out_arg = out.to_str().expect("utf8");
-    assert_quiet_success(&["compare", "scenarios/sol383-386.toml", "--out", out_arg]);
+    assert_quiet_success(&[
+        "compare",
+        "scenarios/crater-floor-passage.toml",
+        "--out",
+        out_arg,
+    ]);
     assert!(
-        out.join("sol383-386.ground.json").is_file(),
+        out.join("crater-floor-passage.ground.json").is_file(),
         "files written"
     );
 }
@@ -87,7 +92,7 @@ fn compare_into_a_closed_pipe_still_writes_its_files() {
 #[test]
 fn a_closed_pipe_keeps_the_exit_status_of_the_work() {
     let dir = tempfile::tempdir().expect("tempdir");
-    let text = std::fs::read_to_string(root().join("scenarios/sol383-386.toml"))
+    let text = std::fs::read_to_string(root().join("scenarios/crater-floor-passage.toml"))
         .expect("read")
         .replace("drive_rate_m_per_h = 100.0", "drive_rate_m_per_h = -1.0");
     let path = dir.path().join("bad.toml");

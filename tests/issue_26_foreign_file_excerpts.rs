@@ -118,7 +118,7 @@ fn toml_errors_do_not_quote_foreign_files() {
 /// The rule still quotes solsim's own files: an error below a known key shows the line.
 #[test]
 fn toml_errors_still_quote_solsims_own_files() {
-    let (scenario, _d) = common::scenario_copy("sol717-719.toml", |t| {
+    let (scenario, _d) = common::scenario_copy("crater-floor-717.toml", |t| {
         t.replacen("seed = ", "seed = \"not a number\" # ", 1)
     });
     let o = run(&["validate".as_ref(), scenario.as_os_str()]);
@@ -139,7 +139,7 @@ fn toml_errors_still_quote_solsims_own_files() {
 #[test]
 fn points_csv_errors_do_not_quote_foreign_files() {
     let dir = tempfile::tempdir().expect("tempdir");
-    let zones = root().join("scenarios/sol717-719.zones.geojson");
+    let zones = root().join("scenarios/crater-floor-717.zones.geojson");
     for (name, path) in stand_ins(dir.path()) {
         let o = run(&[
             "zones".as_ref(),

@@ -84,7 +84,7 @@ fn an_empty_multipolygon_is_refused_with_its_feature() {
 #[test]
 fn a_3d_waypoint_or_map_origin_is_refused() {
     let o = {
-        let (path, _d) = scenario_copy("sol383-386.toml", |t| {
+        let (path, _d) = scenario_copy("crater-floor-passage.toml", |t| {
             t.replace("[590.0, 320.0]", "[590.0, 320.0, 12.5]")
         });
         solsim().arg("validate").arg(&path).output().expect("runs")
@@ -105,7 +105,7 @@ fn a_3d_waypoint_or_map_origin_is_refused() {
             "resolution_m_per_px = 2.0\norigin_m = [0.0, 1200.0, 0.0]\nzones = ",
         ),
     ] {
-        let (path, _d) = scenario_copy("sol383-386.toml", |t| t.replacen(from, to, 1));
+        let (path, _d) = scenario_copy("crater-floor-passage.toml", |t| t.replacen(from, to, 1));
         let o = solsim().arg("validate").arg(&path).output().expect("runs");
         assert_bad_input(
             &o,

@@ -10,11 +10,12 @@ use std::path::{Path, PathBuf};
 
 use crate::common::{assert_bad_input, rebase, root, solsim, stderr};
 
-/// `scenarios/sol383-386.toml` with a straight route north along x = 600 and one keep-in of
+/// `scenarios/crater-floor-passage.toml` with a straight route north along x = 600 and one keep-in of
 /// `width_m` centred on it, in a new temporary directory.
 fn sliver(dir: &Path, width_m: f64) -> PathBuf {
-    let mut text =
-        rebase(&std::fs::read_to_string(root().join("scenarios/sol383-386.toml")).expect("read"));
+    let mut text = rebase(
+        &std::fs::read_to_string(root().join("scenarios/crater-floor-passage.toml")).expect("read"),
+    );
     let (x0, x1) = (600.0 - width_m / 2.0, 600.0 + width_m / 2.0);
     let zones = dir.join("sliver.geojson");
     std::fs::write(

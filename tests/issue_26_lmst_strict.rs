@@ -23,7 +23,7 @@ const LOOSE: [&str; 12] = [
 
 #[test]
 fn scenario_lmst_fields_take_hh_mm_only() {
-    let path = root().join("scenarios/sol383-386.toml");
+    let path = root().join("scenarios/crater-floor-passage.toml");
     let base = std::fs::read_to_string(&path).expect("read");
     for loose in LOOSE {
         let quoted = toml::Value::from(loose).to_string();
@@ -44,7 +44,7 @@ fn scenario_lmst_fields_take_hh_mm_only() {
         }
     }
     // And through the command line, as the issue found it.
-    let (path, _d) = scenario_copy("sol383-386.toml", |t| {
+    let (path, _d) = scenario_copy("crater-floor-passage.toml", |t| {
         t.replace(
             "drive_start_lmst = \"11:30\"",
             "drive_start_lmst = \"11:+3\"",
@@ -92,7 +92,7 @@ fn sol_downlink_and_campaign_file_lmst_take_hh_mm_only() {
 #[test]
 fn two_digit_clock_readings_still_load() {
     for (start, end) in [("00:00", "24:00"), ("09:05", "17:59"), ("11:30", "14:15")] {
-        let (path, _d) = scenario_copy("sol383-386.toml", |t| {
+        let (path, _d) = scenario_copy("crater-floor-passage.toml", |t| {
             t.replace(
                 "drive_start_lmst = \"11:30\"",
                 &format!("drive_start_lmst = \"{start}\""),

@@ -23,7 +23,7 @@ use std::time::{Duration, Instant};
 use common::{assert_bad_input, output_within, replace_line, root, scenario_copy, solsim, stderr};
 use rand::{RngExt, SeedableRng};
 
-/// A copy of `scenarios/sol383-386.toml` without zones (open ground) whose route is a seeded
+/// A copy of `scenarios/crater-floor-passage.toml` without zones (open ground) whose route is a seeded
 /// random walk of `legs` steps of at most 3 m, kept 160 m inside the 1200 m map so every leg's
 /// search window is whole.
 fn walk(legs: usize) -> (PathBuf, tempfile::TempDir) {
@@ -36,7 +36,7 @@ fn walk(legs: usize) -> (PathBuf, tempfile::TempDir) {
         y = (y + rng.random_range(-3.0..3.0)).clamp(160.0, 1040.0);
     }
     let route = format!("waypoints = [{}]", points.join(", "));
-    let (path, dir) = scenario_copy("sol383-386.toml", |t| {
+    let (path, dir) = scenario_copy("crater-floor-passage.toml", |t| {
         let t = replace_line(&t, "zones = ", "zones = \"none.geojson\"");
         replace_line(&t, "waypoints = ", &route)
     });

@@ -12,7 +12,7 @@ use crate::common::{assert_bad_input, root, scenario_copy, solsim};
 
 #[test]
 fn an_integer_prints_as_its_digits() {
-    let (path, _d) = scenario_copy("sol383-386.toml", |t| {
+    let (path, _d) = scenario_copy("crater-floor-passage.toml", |t| {
         t.replace("sol = 384", "sol = 2147483647")
     });
     let o = solsim().arg("validate").arg(&path).output().expect("runs");
@@ -25,7 +25,7 @@ fn an_integer_prints_as_its_digits() {
         ("4294967295", "got 4294967295"),
         ("18446744073709551615", "18446744073709551615"),
     ] {
-        let (path, _d) = scenario_copy("sol383-386.toml", |t| {
+        let (path, _d) = scenario_copy("crater-floor-passage.toml", |t| {
             t.replace("sol = 384", &format!("sol = {sol}"))
         });
         let o = solsim().arg("validate").arg(&path).output().expect("runs");
@@ -89,7 +89,7 @@ fn no_error_spells_out_a_huge_number_or_an_integer_in_scientific_notation() {
     let mut errors = 0;
     for (file, load) in [
         (
-            "scenarios/sol383-386.toml",
+            "scenarios/crater-floor-passage.toml",
             &scenario as &dyn Fn(&Path, &str) -> _,
         ),
         ("scenarios/self-reliant-campaign.toml", &scenario),

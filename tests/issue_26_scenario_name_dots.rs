@@ -8,8 +8,8 @@ use crate::common::{assert_bad_input, scenario_copy, solsim};
 
 fn with_name(name: &str) -> (std::path::PathBuf, tempfile::TempDir) {
     let name = toml::Value::from(name).to_string();
-    scenario_copy("sol383-386.toml", move |t| {
-        t.replace("name = \"sol383-386\"", &format!("name = {name}"))
+    scenario_copy("crater-floor-passage.toml", move |t| {
+        t.replace("name = \"crater-floor-passage\"", &format!("name = {name}"))
     })
 }
 
@@ -52,7 +52,7 @@ fn names_that_are_no_directory_are_refused_before_anything_is_written() {
 #[test]
 fn ordinary_names_still_load() {
     for name in [
-        "sol383-386",
+        "crater-floor-passage",
         "a.b",
         "...",
         ".hidden",

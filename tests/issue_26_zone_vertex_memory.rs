@@ -30,7 +30,7 @@ fn children_peak_rss_bytes() -> u64 {
     u64::try_from(usage.ru_maxrss).expect("non-negative") * 1024
 }
 
-/// Vertices of the five zones of `scenarios/sol383-386.zones.geojson` (kept, so the replay
+/// Vertices of the five zones of `scenarios/crater-floor-passage.zones.geojson` (kept, so the replay
 /// still faults NO_PATH and writes its fault zones).
 const BUNDLED_VERTICES: usize = 7 + 5 + 5 + 25 + 25;
 const BUNDLED_POLYGONS: usize = 5;
@@ -60,15 +60,17 @@ fn ring(positions: usize, [cx, cy]: [f64; 2], radius_m: f64, teeth_m: f64) -> St
     format!("[{}]", points.join(","))
 }
 
-/// A copy of `scenarios/sol383-386.toml` whose zones file is the bundled zones plus `extra`
+/// A copy of `scenarios/crater-floor-passage.toml` whose zones file is the bundled zones plus `extra`
 /// features, written as `z.geojson` beside it.
 fn scenario_with(extra: &[String]) -> (PathBuf, tempfile::TempDir) {
-    let (path, dir) = scenario_copy("sol383-386.toml", |t| {
+    let (path, dir) = scenario_copy("crater-floor-passage.toml", |t| {
         replace_line(&t, "zones = ", "zones = \"z.geojson\"")
     });
     let bundled: serde_json::Value = serde_json::from_str(
-        &std::fs::read_to_string(common::root().join("scenarios/sol383-386.zones.geojson"))
-            .expect("read"),
+        &std::fs::read_to_string(
+            common::root().join("scenarios/crater-floor-passage.zones.geojson"),
+        )
+        .expect("read"),
     )
     .expect("json");
     let mut features: Vec<String> = bundled["features"]

@@ -87,11 +87,11 @@ fn preemptive_shortening_in_an_expectation_needs_runs_and_a_check() {
 
 #[test]
 fn an_expectation_without_preemptive_shortening_runs_the_sweep_without_it() {
-    // sol383-386's ground meets NO_PATH in a minority of runs with shortening (paper 000 §2)
+    // crater-floor-passage's ground meets NO_PATH in a minority of runs with shortening (paper 000 §2)
     // and in every run without it: the override reaches the planners.
     let dir = tempfile::tempdir().expect("tempdir");
     let src = common::root().join("scenarios");
-    let text = std::fs::read_to_string(src.join("sol383-386.toml")).expect("scenario");
+    let text = std::fs::read_to_string(src.join("crater-floor-passage.toml")).expect("scenario");
     let head = &text[..text.find("\n[[expect]]").expect("an expect")];
     let edited = common::rebase(head)
         + "\n[[expect]]\nwhat = \"without shortening ground faults in every run\"\nstrategy = \"ground\"\nruns = 20\npreemptive_shortening = false\nno_path_rate = [1.0, 1.0]\n\n[[expect]]\nwhat = \"with it, not in every run\"\nstrategy = \"ground\"\nruns = 20\nno_path_rate = [0.0, 0.9]\n";

@@ -1,5 +1,5 @@
 //! The reports in a real browser (issue 13, item 2): report.html of `compare --report` on
-//! scenarios/sol383-386.toml and of `solsim report` on a sweep directory, loaded in headless
+//! scenarios/crater-floor-passage.toml and of `solsim report` on a sweep directory, loaded in headless
 //! Chromium (Debian's package, which `.ci/run` installs; without it this test fails under CI
 //! and says SKIPPED loudly elsewhere): the page loads with no console error, no failed load
 //! and no uncaught exception; the screenshot is not blank and shows the figures' strategy
@@ -55,7 +55,12 @@ fn the_sol383_386_report_renders_in_chromium() {
     let dir = tempfile::tempdir().expect("tempdir");
     let run = dir.path().join("run");
     run_ok(
-        &["compare", "scenarios/sol383-386.toml", "--report", "--out"],
+        &[
+            "compare",
+            "scenarios/crater-floor-passage.toml",
+            "--report",
+            "--out",
+        ],
         &[&run],
     );
     let Some(page) = check_report(&run.join("report.html"), 13) else {

@@ -40,7 +40,12 @@ fn compare_report_and_report_of_the_directory_are_the_same_page() {
     let dir = tempfile::tempdir().expect("tempdir");
     let run = dir.path().join("run");
     let stdout = run_ok(
-        &["compare", "scenarios/sol383-386.toml", "--report", "--out"],
+        &[
+            "compare",
+            "scenarios/crater-floor-passage.toml",
+            "--report",
+            "--out",
+        ],
         &[&run],
     );
     assert!(stdout.contains("report.html"), "{stdout}");
@@ -95,20 +100,27 @@ fn compare_report_and_report_of_the_directory_are_the_same_page() {
 fn report_refuses_a_directory_the_scenario_no_longer_gives() {
     let dir = tempfile::tempdir().expect("tempdir");
     let run = dir.path().join("run");
-    run_ok(&["compare", "scenarios/sol383-386.toml", "--out"], &[&run]);
+    run_ok(
+        &["compare", "scenarios/crater-floor-passage.toml", "--out"],
+        &[&run],
+    );
     let out = dir.path().join("report");
     let report = |d: &Path, extra: &[&str]| common::report(d, &out, extra);
     // An edited sol log.
-    let ground = run.join("sol383-386.ground.json");
+    let ground = run.join("crater-floor-passage.ground.json");
     let text = read(&ground);
     let edited = text.replacen("\"distance_m\": ", "\"distance_m\": 1", 1);
     assert_ne!(edited, text);
     std::fs::write(&ground, &edited).expect("write");
-    assert_bad_input(&report(&run, &[]), &["sol383-386.ground.json", "edited"]);
+    assert_bad_input(
+        &report(&run, &[]),
+        &["crater-floor-passage.ground.json", "edited"],
+    );
     std::fs::write(&ground, &text).expect("write");
     // The scenario given with --scenario is not the one the run used.
-    let (copy, _keep) =
-        common::scenario_copy("sol383-386.toml", |t| t.replacen("seed = ", "seed = 1", 1));
+    let (copy, _keep) = common::scenario_copy("crater-floor-passage.toml", |t| {
+        t.replacen("seed = ", "seed = 1", 1)
+    });
     let o = report(&run, &["--scenario", copy.to_str().expect("utf-8")]);
     assert_bad_input(&o, &["SHA-256", "edited since the run"]);
     // Not a run directory at all.

@@ -1,7 +1,7 @@
 //! The bundled scenarios are the regression suite: every `[[expect]]` in `scenarios/` must hold
-//! (the paper 000 figures: sols 717-719 end at 32.92 m; sol 385 faults NO_PATH after ~14 m at
-//! r ≈ 26.9 m and sol 386 drives ~245 m; the rapid traverse's sols 402-409 and the two sols saved
-//! by onboard localization). A failure prints the same diff as `solsim regress scenarios/`.
+//! (the historic scenarios rebuilt from the public record: sols 717-719 end at 32.92 m, sol 385
+//! faults NO_PATH and onboard localization saves a sol, the rapid traverse's record and the
+//! paper's claims over 200 runs; and the what-if cases). A failure prints the same diff as `solsim regress scenarios/`.
 
 use std::path::Path;
 
@@ -30,6 +30,11 @@ fn sol717_719_ends_at_32_92_m() {
 #[test]
 fn sol383_386_faults_no_path_on_385_and_onboard_avoids_it() {
     check("sol383-386.toml");
+}
+
+#[test]
+fn crater_floor_passage_faults_no_path_and_onboard_avoids_it() {
+    check("crater-floor-passage.toml");
 }
 
 #[test]

@@ -80,7 +80,7 @@ fn every_bundled_file_validates_and_broken_ones_do_not() {
     // Broken scenarios, each also refused by the loader: a misspelled field, a wrong type, a
     // missing section.
     let text = common::rebase(
-        &std::fs::read_to_string(root().join("scenarios/sol383-386.toml")).expect("read"),
+        &std::fs::read_to_string(root().join("scenarios/crater-floor-passage.toml")).expect("read"),
     );
     let broken = [
         (

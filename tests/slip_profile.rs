@@ -169,13 +169,13 @@ fn slip_settings_are_checked() {
         ),
     ];
     for (extra, field) in cases {
-        let (path, _dir) = scenario_copy("sol383-386.toml", |t| {
+        let (path, _dir) = scenario_copy("crater-floor-passage.toml", |t| {
             replace_line(&t, "step_m", &format!("step_m = 2.0\n{extra}"))
         });
         let o = solsim().arg("validate").arg(&path).output().expect("runs");
         assert_bad_input(&o, &[field]);
     }
-    let (path, _dir) = scenario_copy("sol383-386.toml", |t| {
+    let (path, _dir) = scenario_copy("crater-floor-passage.toml", |t| {
         replace_line(&t, "step_m", "step_m = 2.0\nslip_model = \"profile\"")
     });
     let o = solsim().arg("validate").arg(&path).output().expect("runs");

@@ -258,7 +258,7 @@ fn injected_event(o: &sim::CampaignOutcome, sol: u32) -> sim::outcome::Localizat
 /// replanned from the state after it, and the plan stays valid.
 #[test]
 fn a_lost_localization_replans_the_rest_of_the_sol() {
-    let mut s = scenario("sol383-386.toml");
+    let mut s = scenario("crater-floor-passage.toml");
     s.campaign.localizer =
         sim::localizer::OnboardLocalizer::Statistical(sim::localizer::StatisticalLocalizer {
             failure_rate: 1.0,

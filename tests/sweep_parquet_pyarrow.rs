@@ -185,7 +185,7 @@ fn sweep(scenario: &str, runs: &str, strategies: &str, dir: &Path, extra: &[&str
 }
 
 /// Two sweeps pyarrow reads as documented: rapid traverse (a study segment, onboard
-/// localizations; two chunks, so the files are assembled from pieces) and sol383-386 (NO_PATH
+/// localizations; two chunks, so the files are assembled from pieces) and crater-floor-passage (NO_PATH
 /// faults, goals reached, no segment: the nullable columns hold values and nulls).
 #[test]
 fn pyarrow_reads_sweeps_as_documented() {
@@ -200,7 +200,7 @@ fn pyarrow_reads_sweeps_as_documented() {
     );
     let sol383 = tmp.path().join("sol383");
     sweep(
-        "scenarios/sol383-386.toml",
+        "scenarios/crater-floor-passage.toml",
         "3",
         "ground,extension+onboard",
         &sol383,

@@ -46,7 +46,7 @@ pub struct TeamRules {
     /// at superior conjunction; the rules do not follow the distance).
     pub light_time_min: f64,
     /// The afternoon relay pass that carries the post-drive data, LMST (default 17:00: after the
-    /// latest drive end of the record's sols 379-409, 16:07 LMST on sol 382, and the 30-minute
+    /// latest drive end of the record's sols 379-409, 16:08 LMST on sol 382, and the 30-minute
     /// post-drive imaging).
     pub relay_pass_lmst: SolSeconds,
     /// From the pass to the data on the ground ready to plan with, hours, besides light time

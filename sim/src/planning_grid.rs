@@ -135,7 +135,7 @@ impl PlanningGrid {
     }
 
     /// Memory per cell of a built grid, bytes, including what building it holds at its peak.
-    /// Measured (peak RSS of `solsim validate` on `scenarios/sol383-386.toml` at 0.5 m and
+    /// Measured (peak RSS of `solsim validate` on `scenarios/crater-floor-passage.toml` (then sol383-386) at 0.5 m and
     /// 0.25 m cells: 15.9 B per extra cell) and rounded up.
     pub const BYTES_PER_CELL: u64 = 16;
 

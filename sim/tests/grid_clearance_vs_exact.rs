@@ -1,6 +1,7 @@
 //! The planning grid's clearance (exact EDT of the rasterised zones) agrees with the exact
 //! polygon distances of `maps::ZoneSet` (parry2d point-to-segment) to within one grid cell, at
-//! every cell of the bundled sol 383-386 and rapid-traverse zones (sampled), including the
+//! every cell of the bundled crater-floor passage, conjunction (the hand-built rapid traverse) and
+//! record-imported rapid-traverse zones (sampled), including the
 //! 24-gon "craters" and the concave keep-in corridors.
 
 use std::path::Path;
@@ -54,7 +55,7 @@ fn check(zones_file: &str, geo: GeoTransform, width: usize, height: usize) {
 #[test]
 fn sol383_zones_grid_within_one_cell_of_exact() {
     check(
-        "sol383-386.zones.geojson",
+        "crater-floor-passage.zones.geojson",
         GeoTransform::new(0.0, 1200.0, 1.0),
         1200,
         1200,
@@ -64,9 +65,21 @@ fn sol383_zones_grid_within_one_cell_of_exact() {
 #[test]
 fn rapid_traverse_zones_grid_within_one_cell_of_exact() {
     check(
-        "rapid-traverse-379-409.zones.geojson",
+        "conjunction.zones.geojson",
         GeoTransform::new(0.0, 2000.0, 2.0),
         4800,
         1000,
+    );
+}
+
+/// The zones `solsim record import` writes: passages across the recorded route and the keep-in
+/// corridor, the route buffered by 150 m (a MultiPolygon from geo's buffer, round joins).
+#[test]
+fn record_import_zones_grid_within_one_cell_of_exact() {
+    check(
+        "rapid-traverse-379-409.zones.geojson",
+        GeoTransform::new(0.0, 2056.0, 2.0),
+        2038,
+        1028,
     );
 }

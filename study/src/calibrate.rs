@@ -175,11 +175,23 @@ fn ground_m_per_drive_sol(scenario: &Scenario, rate_m_per_h: f64, runs: u64) -> 
     // The rate is AutoNav's: measured with no drive shortened before a passage (the record
     // has none; the passages of a map are placed where the record met them early in a sol).
     s.campaign.rules.preemptive_shortening = false;
+    // The sols the record drove to their end (a drive that faulted says nothing of the rate),
+    // where ground drove to its end too.
+    let cal = &scenario.campaign.calendar;
     let per_run: Vec<(f64, u32)> = (0..runs)
         .into_par_iter()
         .map(|r| {
             let o = s.run_index(Strategy::Ground, r);
-            (o.totals.distance_m, o.totals.drive_sols)
+            o.sols
+                .iter()
+                .zip(&cal.sols)
+                .filter(|(g, e)| {
+                    g.drove
+                        && g.fault.is_none()
+                        && e.historic
+                            .is_some_and(|h| h.distance_m > 0.0 && !h.ended_in_fault)
+                })
+                .fold((0.0, 0), |(d, n), (g, _)| (d + g.distance_m, n + 1))
         })
         .collect();
     let d: f64 = per_run.iter().map(|p| p.0).sum();
@@ -188,8 +200,8 @@ fn ground_m_per_drive_sol(scenario: &Scenario, rate_m_per_h: f64, runs: u64) -> 
 }
 
 /// Solve the AutoNav drive rate at which the re-simulated ground strategy drives as many metres
-/// per drive sol as the record (paper 000 §8's rapid traverse: 5108 m in 23 drive sols,
-/// 222 m). Bisection on the rate between 10 % and 300 % of the scenario's, 40 steps; each step
+/// per drive sol as the record, over the sols both drove to their end: a drive that faulted
+/// (sol 385's 14 m) says nothing of the rate. Bisection on the rate between 10 % and 300 % of the scenario's, 40 steps; each step
 /// runs `runs` ground re-simulations (run indices 0..runs, common to every step), with
 /// pre-emptive shortening off: no historic drive was shortened for a passage.
 ///
@@ -208,8 +220,8 @@ pub fn calibrate_drive_rate(
         .sols
         .iter()
         .filter_map(|s| s.historic)
+        .filter(|h| h.distance_m > 0.0 && !h.ended_in_fault)
         .map(|h| h.distance_m)
-        .filter(|&d| d > 0.0)
         .collect();
     if driven.is_empty() {
         return Err(CalibrationError::NoRecord(scenario.name.clone()));

@@ -21,13 +21,13 @@
 //! use sim::Strategy;
 //! use study::Scenario;
 //!
-//! // Sols 383-386 (paper 000 §2): the historic plan faults NO_PATH on sol 385; onboard
-//! // localization after every drive keeps the passage open.
+//! // Sols 383-386 from the public record (paper 000 §2): the historic plan faults NO_PATH on
+//! // sol 385; onboard localization after every drive keeps the passage open.
 //! let scenario = Scenario::load("../scenarios/sol383-386.toml".as_ref())?;
 //! for run in 0..2 {
 //!     // Run 0 is the scenario's own seed; each run index is another world and other draws.
 //!     let replay = scenario.run_index(Strategy::Replay, run);
-//!     assert_eq!(replay.sols.len(), 5); // 383-386 and 387, beyond the record
+//!     assert_eq!(replay.sols.len(), 4);
 //!     assert!(replay.totals.no_path_faults >= 1);
 //!     assert_eq!(scenario.run_index(Strategy::Onboard, run).totals.no_path_faults, 0);
 //! }
@@ -41,7 +41,7 @@
 //! use std::path::Path;
 //! use study::scenario::ScenarioSpec;
 //!
-//! let text = std::fs::read_to_string("../scenarios/sol383-386.toml")?;
+//! let text = std::fs::read_to_string("../scenarios/crater-floor-passage.toml")?;
 //! let text = text.replace("k_vo = 0.05", "k_vo = 1e300");
 //! let e = ScenarioSpec::from_toml_str(Path::new("x.toml"), &text).unwrap_err();
 //! assert_eq!(

@@ -940,7 +940,7 @@ pub fn import(layer: &TraverseLayer, opts: &ImportOptions) -> Result<Imported, S
         sols,
         findings,
         drive_rate_m_per_h: drive_rate,
-        route_length_m: total_m,
+        route_length_m: *along(&waypoints).last().unwrap_or(&0.0),
         route_m: waypoints,
         options: opts.clone(),
     };

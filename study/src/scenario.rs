@@ -731,7 +731,7 @@ impl ScenarioSpec {
                     s.sol,
                 ));
             }
-            let computed = computed_calendar.as_ref().map(|cc| &cc.sols[i]);
+            let computed = computed_calendar.as_ref().and_then(|cc| cc.sols.get(i));
             // The first sol's plan was uplinked before the range, if not on it.
             let uplink = s
                 .uplink
@@ -1074,6 +1074,9 @@ impl ScenarioSpec {
     }
 }
 
+/// Largest sol a computed calendar covers (Mars time is good for any; this bounds the work).
+const MAX_COMPUTED_SOL: u32 = 20_000;
+
 /// `"HH:MM"` in Pasadena as hours after midnight.
 fn pasadena_clock(c: &Check<'_>, field: &str, v: &str) -> Result<f64, ScenarioError> {
     sim::time::SolSeconds::parse_lmst(v)
@@ -1108,7 +1111,7 @@ fn computed_calendar(
             format!("{:?}", raw.mission),
         ));
     }
-    let (Some(first), Some(last)) = (sols.first(), sols.last()) else {
+    let Some(first) = sols.first() else {
         return Err(c.err("sols", "at least one [[sols]] entry", "none"));
     };
     let mut rules = TeamRules::for_mission(sim::mars_time::MARS_2020, 2020..=2040);
@@ -1152,14 +1155,21 @@ fn computed_calendar(
             })?;
         rules.holidays.push(day.civil_day(0.0));
     }
-    if u64::from(last.sol) > 20_000 {
+    if let Some((i, s)) = sols
+        .iter()
+        .enumerate()
+        .find(|(_, s)| s.sol > MAX_COMPUTED_SOL)
+    {
         return Err(c.err(
-            "sols",
-            "sols within 20000 of landing for a computed calendar",
-            last.sol,
+            &format!("sols[{i}].sol"),
+            format!("a sol within {MAX_COMPUTED_SOL} of landing for a computed calendar"),
+            s.sol,
         ));
     }
-    let computed = rules.compute(first.sol..=last.sol);
+    // One computed sol per entry from the first on: entries that are not consecutive are the
+    // calendar's error, reported in order by the caller.
+    let count = u32::try_from(sols.len()).unwrap_or(u32::MAX);
+    let computed = rules.compute(first.sol..=first.sol.saturating_add(count - 1));
     let overrides = sols
         .iter()
         .flat_map(|s| {

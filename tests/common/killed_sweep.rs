@@ -12,7 +12,7 @@ use std::time::Duration;
 use super::{output_within, root, solsim};
 
 /// The scenario every fixture sweeps.
-pub const SCENARIO: &str = "scenarios/sol717-719.toml";
+pub const SCENARIO: &str = "scenarios/crater-floor-717.toml";
 
 /// A scenario and sweep spec, and a scratch directory for sweep directories.
 pub struct Fixture {

@@ -59,9 +59,9 @@ pub fn scenario_copy(base: &str, edit: impl Fn(String) -> String) -> (PathBuf, t
     (path, dir)
 }
 
-/// `solsim validate` on a copy of `scenarios/sol717-719.toml` edited by `edit`.
+/// `solsim validate` on a copy of `scenarios/crater-floor-717.toml` edited by `edit`.
 pub fn validate_edited_sol717(edit: impl Fn(String) -> String) -> Output {
-    let (path, _d) = scenario_copy("sol717-719.toml", edit);
+    let (path, _d) = scenario_copy("crater-floor-717.toml", edit);
     solsim().arg("validate").arg(&path).output().expect("runs")
 }
 
