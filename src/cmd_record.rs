@@ -42,7 +42,7 @@ pub enum RecordCommand {
     /// Per sol: the historic distance (paper 000's odometry where it gives one, the record's
     /// length otherwise, each marked in `historic_source`), the drive's window in LMST from the
     /// spacecraft clock (Mars24), the route along the recorded path in map metres, the calendar
-    /// computed from Mars time ([calendar]); idle sols the calendar does not explain become
+    /// computed from Mars time (`[calendar]`); idle sols the calendar does not explain become
     /// historic science stops. Re-filed drives, cumulative entries and entries spanning idle
     /// sols are handled and listed. Keep-out passages are placed by a written rule (a
     /// modelling choice: the record has no zones); the scenario's header says what comes from

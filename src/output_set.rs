@@ -109,14 +109,7 @@ impl OutputSet {
     /// # Panics
     /// If `name` is absolute or climbs out of the set (`..`): names are the program's own.
     pub fn write(&self, name: &str, bytes: &[u8]) -> Result<PathBuf, OutputSetError> {
-        let relative = Path::new(name);
-        assert!(
-            relative
-                .components()
-                .all(|c| matches!(c, std::path::Component::Normal(_))),
-            "output name {name:?} must be a relative path inside the set"
-        );
-        let path = self.staging.join(relative);
+        let path = self.staged(name);
         if let Some(folder) = path.parent()
             && folder != self.staging
         {
@@ -137,6 +130,16 @@ impl OutputSet {
     /// # Panics
     /// As [`OutputSet::write`].
     pub fn staging_path(&self, name: &str) -> Result<PathBuf, OutputSetError> {
+        let path = self.staged(name);
+        fs::create_dir_all(&path).map_err(io(&path))?;
+        Ok(path)
+    }
+
+    /// `name` inside the staging directory.
+    ///
+    /// # Panics
+    /// If `name` is absolute or climbs out of the set (`..`): names are the program's own.
+    fn staged(&self, name: &str) -> PathBuf {
         let relative = Path::new(name);
         assert!(
             relative
@@ -144,9 +147,7 @@ impl OutputSet {
                 .all(|c| matches!(c, std::path::Component::Normal(_))),
             "output name {name:?} must be a relative path inside the set"
         );
-        let path = self.staging.join(relative);
-        fs::create_dir_all(&path).map_err(io(&path))?;
-        Ok(path)
+        self.staging.join(relative)
     }
 
     /// Puts the set in place of the earlier one, atomically.

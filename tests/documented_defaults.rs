@@ -64,18 +64,18 @@ fn readme_defaults_match_the_code() {
             rover.errors.slip_sigma_relative,
         ),
         (
-            "`vo_failure` (sand 0.00255, soil 0.000255, bedrock 0.0001275)",
-            0.00255,
+            "`vo_failure` (sand 0.00321, soil 0.000321, bedrock 0.0001605)",
+            0.00321,
             rover.errors.vo_failure.sand,
         ),
         (
-            "`vo_failure` (sand 0.00255, soil 0.000255, bedrock 0.0001275)",
-            0.000255,
+            "`vo_failure` (sand 0.00321, soil 0.000321, bedrock 0.0001605)",
+            0.000321,
             rover.errors.vo_failure.soil,
         ),
         (
-            "`vo_failure` (sand 0.00255, soil 0.000255, bedrock 0.0001275)",
-            0.0001275,
+            "`vo_failure` (sand 0.00321, soil 0.000321, bedrock 0.0001605)",
+            0.0001605,
             rover.errors.vo_failure.bedrock,
         ),
         (

@@ -19,8 +19,9 @@ fn bundled(name: &str) -> String {
 
 #[test]
 fn a_sol_number_of_u32_max_before_another_sol_is_an_error_not_a_panic() {
-    let text = bundled("sol717-719.toml").replace("sol = 717\n", "sol = 4294967295\n");
-    let path = Path::new("scenarios/sol717-719.toml");
+    // A typed calendar: the next sol would overflow.
+    let text = bundled("crater-floor-717.toml").replace("sol = 717\n", "sol = 4294967295\n");
+    let path = Path::new("scenarios/crater-floor-717.toml");
     let err = ScenarioSpec::from_toml_str(path, &text).expect_err("sols not consecutive");
     match &err {
         ScenarioError::Field {
@@ -28,6 +29,20 @@ fn a_sol_number_of_u32_max_before_another_sol_is_an_error_not_a_panic() {
         } => {
             assert_eq!(field, "sols[1].sol", "{err}");
             assert!(expected.contains("4294967296"), "{err}");
+        }
+        other => panic!("expected a field error, got {other}"),
+    }
+    // A calendar computed from Mars time (issue 27): refused before any sol is computed (it
+    // indexed past the computed sols and panicked).
+    let text = bundled("sol717-719.toml").replace("sol = 717\n", "sol = 4294967295\n");
+    let path = Path::new("scenarios/sol717-719.toml");
+    let err = ScenarioSpec::from_toml_str(path, &text).expect_err("sol out of range");
+    match &err {
+        ScenarioError::Field {
+            field, expected, ..
+        } => {
+            assert_eq!(field, "sols[0].sol", "{err}");
+            assert!(expected.contains("within 20000 of landing"), "{err}");
         }
         other => panic!("expected a field error, got {other}"),
     }

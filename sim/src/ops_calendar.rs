@@ -25,7 +25,7 @@
 //! ([`crate::policy`]). What the rules cannot know stays a typed, historic input of the
 //! scenario: a sol without a relay pass (paper 000 §8: none on sol 406), a science stop.
 //!
-//! The defaults and what they rest on are in [`TeamRules::default`]'s field docs. Times of day in
+//! The defaults and what they rest on are in [`TeamRules`]'s field docs ([`TeamRules::for_mission`]). Times of day in
 //! Pasadena are US Pacific time with daylight saving ([`crate::earth_time::pacific_offset_h`]).
 
 use std::ops::RangeInclusive;

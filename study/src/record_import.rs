@@ -679,12 +679,12 @@ pub fn import(layer: &TraverseLayer, opts: &ImportOptions) -> Result<Imported, S
     // Calibrated drive rate: the record's metres over hours, drives with a whole window.
     let (mut metres, mut hours, mut n) = (0.0, 0.0, 0usize);
     for s in &range.sols {
-        if let (Some(w), [d]) = (s.window, s.drives.as_slice()) {
-            if w.start.is_some() {
-                metres += d.length_m;
-                hours += (d.sclk_end_s - d.sclk_start_s) / 3600.0;
-                n += 1;
-            }
+        if let (Some(w), [d]) = (s.window, s.drives.as_slice())
+            && w.start.is_some()
+        {
+            metres += d.length_m;
+            hours += (d.sclk_end_s - d.sclk_start_s) / 3600.0;
+            n += 1;
         }
     }
     let drive_rate = if hours > 0.0 {
@@ -757,82 +757,51 @@ pub fn import(layer: &TraverseLayer, opts: &ImportOptions) -> Result<Imported, S
         .collect();
     let total_drive: f64 = sols.iter().map(|x| x.distance_m).sum();
     let mut t = String::new();
-    let _ = writeln!(
-        t,
-        "# Sols {first}-{last} replayed from the public record of Perseverance's drives: NASA's"
-    );
-    let _ = writeln!(
-        t,
-        "# Mars 2020 MMGIS layer {} (data/m20/M20_traverse.json). Written by",
-        layer.name
-    );
-    let _ = writeln!(
-        t,
-        "# `solsim record import --sols {first}-{last}`. {} drive sols, {total_drive:.1} m.",
-        drove.len()
-    );
-    let _ = writeln!(t, "#\n# Where each number comes from:");
-    let _ = writeln!(
-        t,
-        "# - historic input (the record): which sols drove; each sol's distance (historic_source says"
-    );
-    let _ = writeln!(
-        t,
-        "#   whether it is the record's length or paper 000's odometry); each drive's window in LMST"
-    );
-    let _ = writeln!(
-        t,
-        "#   from the spacecraft clock (Mars24); the route, the recorded path in map metres (Jezero"
-    );
-    let _ = writeln!(
-        t,
-        "#   equirectangular CRS), on for {:.0} m past the range along the record's later drives.",
-        opts.route_beyond_m
-    );
-    let _ = writeln!(
-        t,
-        "# - historic input (paper 000): the odometry it quotes, a NO_PATH fault, a sol without a relay"
-    );
-    let _ = writeln!(
-        t,
-        "#   pass; metres without VO derived from the radii it gives (historic_novo_m)."
-    );
-    let _ = writeln!(
-        t,
-        "# - historic science stops: idle sols of the record the computed calendar does not explain"
-    );
-    let _ = writeln!(t, "#   (drive = false).");
-    let _ = writeln!(
-        t,
-        "# - computed: the calendar ([calendar]: Mars time and the team's rules, sim::ops_calendar)."
-    );
-    let _ = writeln!(
-        t,
-        "# - measured: the record's own speed, {drive_rate} m/h = {metres:.1} m over {hours:.2} h of its {n} drives with a"
-    );
-    let _ = writeln!(
-        t,
-        "#   whole window in this range; calibrated from it: the AutoNav rate ([rover])."
-    );
-    let _ = writeln!(
-        t,
-        "# - modelling choice: the procedural map and the passages (keep-out pairs) of the zones file, by"
-    );
-    let _ = writeln!(
-        t,
-        "#   the import rule: where the replay, run without them, is {} m into every drive sol planned from a known position, at least {} m apart,",
-        opts.passage_into_sol_m, opts.passage_spacing_m
-    );
-    let _ = writeln!(
-        t,
-        "#   clearance {} m; at a historic NO_PATH, 20 m past the paper's distance into the sol, closing at paper 000's radius.",
-        opts.passage_clearance_m
-    );
-    let _ = writeln!(
-        t,
-        "# - emergent: every skip, fault, radius and sol count of the what-if strategies."
-    );
-    let _ = writeln!(t, "#\n# What the record held besides plain drives:");
+    // The header: where each number comes from.
+    let header = [
+        format!(
+            "# Sols {first}-{last} replayed from the public record of Perseverance's drives: NASA's"
+        ),
+        format!(
+            "# Mars 2020 MMGIS layer {} (data/m20/M20_traverse.json). Written by",
+            layer.name
+        ),
+        format!(
+            "# `solsim record import --sols {first}-{last}`. {} drive sols, {total_drive:.1} m.",
+            drove.len()
+        ),
+        "#\n# Where each number comes from:".to_owned(),
+        "# - historic input (the record): which sols drove; each sol's distance (historic_source says".to_owned(),
+        "#   whether it is the record's length or paper 000's odometry); each drive's window in LMST".to_owned(),
+        "#   from the spacecraft clock (Mars24); the route, the recorded path in map metres (Jezero".to_owned(),
+        format!(
+            "#   equirectangular CRS), on for {:.0} m past the range along the record's later drives.",
+            opts.route_beyond_m
+        ),
+        "# - historic input (paper 000): the odometry it quotes, a NO_PATH fault, a sol without a relay".to_owned(),
+        "#   pass; metres without VO derived from the radii it gives (historic_novo_m).".to_owned(),
+        "# - historic science stops: idle sols of the record the computed calendar does not explain".to_owned(),
+        "#   (drive = false).".to_owned(),
+        "# - computed: the calendar ([calendar]: Mars time and the team's rules, sim::ops_calendar).".to_owned(),
+        format!(
+            "# - measured: the record's own speed, {drive_rate} m/h = {metres:.1} m over {hours:.2} h of its {n} drives with a"
+        ),
+        "#   whole window in this range; calibrated from it: the AutoNav rate ([rover]).".to_owned(),
+        "# - modelling choice: the procedural map and the passages (keep-out pairs) of the zones file, by".to_owned(),
+        format!(
+            "#   the import rule: where the replay, run without them, is {} m into every drive sol planned from a known position, at least {} m apart,",
+            opts.passage_into_sol_m, opts.passage_spacing_m
+        ),
+        format!(
+            "#   clearance {} m; at a historic NO_PATH, 20 m past the paper's distance into the sol, closing at paper 000's radius.",
+            opts.passage_clearance_m
+        ),
+        "# - emergent: every skip, fault, radius and sol count of the what-if strategies.".to_owned(),
+        "#\n# What the record held besides plain drives:".to_owned(),
+    ];
+    for line in header {
+        let _ = writeln!(t, "{line}");
+    }
     for f in &findings {
         let _ = writeln!(t, "# - {f}");
     }
