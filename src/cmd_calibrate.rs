@@ -23,11 +23,13 @@ pub enum CalibrateCommand {
     Vo(VoArgs),
     /// The AutoNav drive rate at which the ground strategy, re-simulated, drives as many metres
     /// per drive sol as the record, over the sols both drove to their end (a faulted drive says
-    /// nothing of the rate; the rapid traverse: 4972.7 m in 23 such sols, 216.2 m).
+    /// nothing of the rate). For scenarios whose historic sols have no speed of their own (e.g.
+    /// scenarios/crater-floor-passage.toml); one written by `solsim record import` drives each
+    /// historic sol at its own speed, its distance over its window, and is refused.
     ///
     /// Bisects the rate; each step runs the ground strategy over run indices 0..RUNS. Prints
     /// the record's metres per drive sol, the scenario's rate and what ground drives at it, and
-    /// the calibrated rate. The bundled rapid traverse's `drive_rate_m_per_h` comes from it.
+    /// the calibrated rate.
     DriveRate(VoArgs),
 }
 

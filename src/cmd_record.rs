@@ -30,9 +30,6 @@ fn bundled_traverse() -> PathBuf {
     }
 }
 
-/// Ground re-simulations per step of the import's drive-rate calibration.
-pub const CALIBRATION_RUNS: u64 = 20;
-
 /// `solsim record`.
 #[derive(Subcommand)]
 pub enum RecordCommand {
@@ -176,19 +173,7 @@ fn import_cmd(a: &ImportArgs, budget: MemoryBudget, out: &mut impl Write) -> any
     }));
     let (zones, passages) = imported.place_passages(&starts);
     set.write(&zones_file, zones.as_bytes())?;
-    // The AutoNav rate: calibrated on the written scenario so that simulated ground, driving
-    // the record's windows, drives the record's metres per drive sol.
-    let scenario = study::Scenario::load_within(&staged, budget)?;
-    let cal = study::calibrate::calibrate_drive_rate(&scenario, CALIBRATION_RUNS)?;
-    let rate = (cal.calibrated_rate_m_per_h * 10.0).round() / 10.0;
-    let how = format!(
-        "at this rate the simulated ground, driving the record's windows, drives the record's {:.1} m per drive sol (`solsim calibrate drive-rate`, {CALIBRATION_RUNS} runs; the record's own speed is {} m/h)",
-        cal.record_m_per_drive_sol, imported.drive_rate_m_per_h
-    );
-    let scenario_path = set.write(
-        &scenario_file,
-        imported.with_calibrated_rate(rate, &how).as_bytes(),
-    )?;
+    let scenario_path = set.write(&scenario_file, imported.scenario_toml.as_bytes())?;
     let mut report = String::new();
     for f in &imported.findings {
         report.push_str(f);
@@ -202,7 +187,7 @@ fn import_cmd(a: &ImportArgs, budget: MemoryBudget, out: &mut impl Write) -> any
     let total: f64 = imported.sols.iter().map(|x| x.distance_m).sum();
     writeln!(
         out,
-        "wrote {} (+ {zones_file}, {map_dir}/): sols {}-{} of {}: {drove} drive sols, {total:.1} m; route {:.0} m; AutoNav rate {rate} m/h (the record's own speed {} m/h)",
+        "wrote {} (+ {zones_file}, {map_dir}/): sols {}-{} of {}: {drove} drive sols, {total:.1} m; route {:.0} m; AutoNav rate {} m/h (the record's mean speed; each historic drive sol drives at its own)",
         scenario_path.display(),
         opts.sols.start(),
         opts.sols.end(),

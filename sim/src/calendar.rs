@@ -51,6 +51,9 @@ pub struct SolEntry {
     /// This sol's own drive window (LMST start, end), instead of the calendar's: the record's
     /// window on a historic drive sol.
     pub window: Option<(SolSeconds, SolSeconds)>,
+    /// This sol's own AutoNav rate, m/h, instead of the rover's: the record's speed on a
+    /// historic drive sol (its distance over its window), the terrain and plan of that sol.
+    pub drive_rate_m_per_h: Option<f64>,
     /// How the plan uplinked this sol was built historically (replays).
     pub historic_planning: Option<Planning>,
     /// What the rover did historically (replays).
@@ -122,6 +125,7 @@ pub(crate) fn test_sol(sol: u32, uplink: bool, restricted: bool, downlink: bool)
         downlink_lmst: None,
         drive_allowed: true,
         window: None,
+        drive_rate_m_per_h: None,
         historic_planning: None,
         historic: None,
     }

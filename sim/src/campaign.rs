@@ -345,9 +345,20 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
             if let Some(left) = passage_left_m {
                 limits.max_distance_m = Some(limits.max_distance_m.map_or(left, |m| m.min(left)));
             }
+            // The sol's own AutoNav rate, where the record gives one.
+            let sol_rover = RoverParams {
+                drive_rate_m_per_h: entry
+                    .drive_rate_m_per_h
+                    .unwrap_or(c.rover.drive_rate_m_per_h),
+                ..c.rover
+            };
+            let sol_ctx = DriveContext {
+                rover: &sol_rover,
+                ..ctx
+            };
             let env = SolEnv {
                 c,
-                ctx: &ctx,
+                ctx: &sol_ctx,
                 sol: entry.sol,
                 onboard: policy.localizes_onboard,
                 limits,
@@ -356,7 +367,7 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
             let request = SolPlanRequest {
                 drive_start,
                 drive_end: end.max(drive_start),
-                drive_rate_m_per_h: c.rover.drive_rate_m_per_h,
+                drive_rate_m_per_h: sol_rover.drive_rate_m_per_h,
                 downlink: entry.downlink_lmst,
                 panorama_on_pass,
                 chain: env.onboard.then(|| chain_durations(&c.localizer)),

@@ -127,6 +127,16 @@ impl Campaign {
                 });
             }
         }
+        if let Some(e) = cal.sols.iter().find(|e| {
+            e.drive_rate_m_per_h
+                .is_some_and(|v| !(v > 0.0 && v.is_finite()))
+        }) {
+            return Err(CampaignError::Parameter {
+                name: "sols[].drive_rate_m_per_h",
+                value: e.drive_rate_m_per_h.unwrap_or(f64::NAN),
+                expected: "a positive, finite rate, metres per hour",
+            });
+        }
         let windows = std::iter::once((cal.drive_start, cal.drive_end))
             .chain(cal.sols.iter().filter_map(|e| e.window));
         for (start, end) in windows {

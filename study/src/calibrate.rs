@@ -54,6 +54,12 @@ pub enum CalibrationError {
     /// Zero runs.
     #[error("--runs must be at least 2 (got {0})")]
     TooFewRuns(u64),
+    /// The historic drive sols drive at their own speeds (their distance over their window,
+    /// from the record's clock): the rover's rate sets only the sols without one.
+    #[error(
+        "{0}: its historic drive sols drive at their own speeds (distance over window, from the record's clock); the rover's rate sets only the sols without one, the record's mean speed, so there is nothing to calibrate against the record"
+    )]
+    OwnSpeeds(String),
 }
 
 /// Solve the VO failure probability on soil so that the expected distance without VO over the
@@ -213,6 +219,18 @@ pub fn calibrate_drive_rate(
 ) -> Result<DriveRateCalibration, CalibrationError> {
     if runs < 2 {
         return Err(CalibrationError::TooFewRuns(runs));
+    }
+    let unfaulted = |e: &&sim::SolEntry| {
+        e.historic
+            .is_some_and(|h| h.distance_m > 0.0 && !h.ended_in_fault)
+    };
+    let cal_sols = &scenario.campaign.calendar.sols;
+    if cal_sols
+        .iter()
+        .filter(unfaulted)
+        .any(|e| e.drive_rate_m_per_h.is_some())
+    {
+        return Err(CalibrationError::OwnSpeeds(scenario.name.clone()));
     }
     let driven: Vec<f64> = scenario
         .campaign

@@ -13,8 +13,9 @@
 //! - **computed**: the calendar (`[calendar]`, [`sim::ops_calendar`]); which idle sols it
 //!   explains for today's ground practice ([`sim::policy::Policy::calendar_schedule`]). An idle
 //!   sol it does not explain is a **historic science stop**, typed as `drive = false` and named.
-//! - **calibrated**: the AutoNav rate, the record's own metres over hours for the range's
-//!   drives with a whole window.
+//! - **measured**: each historic drive sol's AutoNav rate, its distance over its window (every
+//!   strategy drives that sol at that pace); their mean, metres over hours of the range's drives
+//!   with a whole window, for the other sols.
 //! - **modelling choice** (the record has no zones): narrow passages across the recorded path,
 //!   by the rule of [`ImportOptions`]: one `passage_into_sol_m` into every drive sol the ground
 //!   planned from a known position, at least `passage_spacing_m` apart, of clearance
@@ -195,7 +196,8 @@ pub struct Imported {
     pub sols: Vec<ImportedSol>,
     /// What the record held besides plain drives, and what was done with it.
     pub findings: Vec<String>,
-    /// The calibrated AutoNav rate, m/h, and the drives it came from.
+    /// The record's mean speed over the range's drives with a whole window, m/h: the AutoNav
+    /// rate of sols without their own.
     pub drive_rate_m_per_h: f64,
     /// Route length, metres.
     pub route_length_m: f64,
@@ -204,11 +206,6 @@ pub struct Imported {
     /// The options it was imported with.
     pub options: ImportOptions,
 }
-
-/// The line of [`Imported::scenario_toml`] that holds the AutoNav rate, up to its value: the
-/// record's own speed until [`Imported::with_calibrated_rate`] puts the calibrated one there.
-pub const DRIVE_RATE_MARK: &str =
-    "# The record's own speed (see the header); not yet calibrated.\ndrive_rate_m_per_h = ";
 
 /// Metres along the polyline `points` (cumulative `cum`) of its point nearest `p`.
 #[must_use]
@@ -332,17 +329,6 @@ impl Imported {
                 zones.join(",\n")
             ),
             n,
-        )
-    }
-
-    /// The scenario text with `rate_m_per_h` as its AutoNav rate and `how` (what it was
-    /// calibrated to) in its comment.
-    #[must_use]
-    pub fn with_calibrated_rate(&self, rate_m_per_h: f64, how: &str) -> String {
-        self.scenario_toml.replacen(
-            &format!("{DRIVE_RATE_MARK}{}", self.drive_rate_m_per_h),
-            &format!("# Calibrated: {how}\ndrive_rate_m_per_h = {rate_m_per_h}"),
-            1,
         )
     }
 }
@@ -609,6 +595,7 @@ pub fn import(layer: &TraverseLayer, opts: &ImportOptions) -> Result<Imported, S
                 downlink_lmst: None,
                 drive_allowed: !stops[i],
                 window: None,
+                drive_rate_m_per_h: None,
                 historic_planning: None,
                 historic: None,
             })
@@ -784,9 +771,10 @@ pub fn import(layer: &TraverseLayer, opts: &ImportOptions) -> Result<Imported, S
         "#   (drive = false).".to_owned(),
         "# - computed: the calendar ([calendar]: Mars time and the team's rules, sim::ops_calendar).".to_owned(),
         format!(
-            "# - measured: the record's own speed, {drive_rate} m/h = {metres:.1} m over {hours:.2} h of its {n} drives with a"
+            "# - measured: each drive's speed, its distance over its window (the AutoNav rate of that sol for"
         ),
-        "#   whole window in this range; calibrated from it: the AutoNav rate ([rover]).".to_owned(),
+        format!("#   every strategy); their mean, {drive_rate} m/h = {metres:.1} m over {hours:.2} h of the {n} drives with a whole"),
+        "#   window, for the other sols ([rover]).".to_owned(),
         "# - modelling choice: the procedural map and the passages (keep-out pairs) of the zones file, by".to_owned(),
         format!(
             "#   the import rule: where the replay, run without them, is {} m into every drive sol planned from a known position, at least {} m apart,",
@@ -823,7 +811,7 @@ pub fn import(layer: &TraverseLayer, opts: &ImportOptions) -> Result<Imported, S
     let _ = writeln!(t, "[grid]\nresolution_m = 2.0\nmax_slope_deg = 25.0\n");
     let _ = writeln!(
         t,
-        "[rover]\nfootprint_radius_m = {}\n{DRIVE_RATE_MARK}{drive_rate}\nstep_m = 2.0\n",
+        "[rover]\nfootprint_radius_m = {}\n# The record's mean speed (see the header): the AutoNav rate of sols without a window of\n# their own. Each historic drive sol drives at its own speed, its distance over its window.\ndrive_rate_m_per_h = {drive_rate}\nstep_m = 2.0\n",
         opts.footprint_radius_m
     );
     let _ = writeln!(

@@ -856,6 +856,16 @@ impl ScenarioSpec {
                     ));
                 }
             };
+            // The sol's own AutoNav rate: the record's distance over its whole window, for a
+            // historic drive that ended without a fault (its terrain and plan set the pace).
+            let drive_rate_m_per_h = match (historic, &s.historic_drive_start_lmst, window) {
+                (Some(h), Some(_), Some((start, end)))
+                    if h.distance_m > 0.0 && !h.ended_in_fault =>
+                {
+                    Some(h.distance_m / ((end - start) as f64 / 3600.0))
+                }
+                _ => None,
+            };
             sols.push(SolEntry {
                 sol: s.sol,
                 uplink,
@@ -866,6 +876,7 @@ impl ScenarioSpec {
                 downlink_lmst,
                 drive_allowed: s.drive.unwrap_or(true),
                 window,
+                drive_rate_m_per_h,
                 historic_planning,
                 historic,
             });
