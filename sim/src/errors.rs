@@ -77,7 +77,7 @@ pub const VO_FAILURE_RELATIVE: PerTerrain = PerTerrain {
 /// the shares being the terrain classes under the re-simulated ground drive (a failed step
 /// charges the commanded length, a VO step the length after slip). `tests/calibration_vo.rs` re-runs
 /// it and checks this value.
-pub const VO_FAILURE_SOIL: f64 = 3.21e-4;
+pub const VO_FAILURE_SOIL: f64 = 3.16e-4;
 
 /// The error model: what the estimate does not know (see the module docs for each term).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
