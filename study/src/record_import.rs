@@ -770,9 +770,8 @@ pub fn import(layer: &TraverseLayer, opts: &ImportOptions) -> Result<Imported, S
         "# - historic science stops: idle sols of the record the computed calendar does not explain".to_owned(),
         "#   (drive = false).".to_owned(),
         "# - computed: the calendar ([calendar]: Mars time and the team's rules, sim::ops_calendar).".to_owned(),
-        format!(
-            "# - measured: each drive's speed, its distance over its window (the AutoNav rate of that sol for"
-        ),
+        "# - measured: each drive's speed, its distance over its window (the AutoNav rate of that sol for"
+            .to_owned(),
         format!("#   every strategy); their mean, {drive_rate} m/h = {metres:.1} m over {hours:.2} h of the {n} drives with a whole"),
         "#   window, for the other sols ([rover]).".to_owned(),
         "# - modelling choice: the procedural map and the passages (keep-out pairs) of the zones file, by".to_owned(),
