@@ -67,6 +67,7 @@ mod issue_26_sweep_dir_lock;
 mod issue_26_sweep_special_files;
 mod issue_26_symlinked_chunks_dir;
 mod issue_26_terminal_escape;
+mod issue_27_calendar_fields;
 mod issue_27_ground_skips_driven_sols;
 mod localize_cli;
 mod localizer_comparison;
