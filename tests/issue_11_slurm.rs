@@ -175,14 +175,11 @@ fn assert_ok(o: &Output, what: &str) {
 #[test]
 fn slurm_job_array_sweep_merges_to_the_local_sweep() {
     if !is_root() {
-        assert!(
-            std::env::var_os("CI").is_none(),
-            "CI is set but this test is not running as root: the Slurm cluster needs root, \
-             and CI must run this test, not skip it"
-        );
-        eprintln!(
-            "SKIPPED slurm_job_array_sweep_merges_to_the_local_sweep: not root (the Slurm \
-             cluster installs packages and starts daemons as root; CI runs it)"
+        common::external::unavailable(
+            "the Slurm job-array sweep on a real single-node cluster",
+            "the tests do not run as root (the cluster installs Debian's slurmctld, slurmd and \
+             munge and starts their daemons)",
+            "sudo scripts/test.sh",
         );
         return;
     }

@@ -7,6 +7,9 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+
+#[path = "../../tests/common/external.rs"]
+mod external;
 use std::time::Instant;
 
 /// Footprint radius the committed shapely table was made with (see `peers/zones_reference.py`).
@@ -114,16 +117,16 @@ fn matches_shapely_reference_table() {
     eprintln!("shapely comparison: {rows} points, worst difference {worst:e} m");
 }
 
-/// When `peers/.venv` exists (made by `peers/zones_reference.py`), re-run shapely and check the
-/// committed table is what it prints today. Without the venv only the committed table is used.
+/// Re-runs shapely (in `peers/.venv`, made by `python3 peers/setup_venv.py`) and checks the
+/// committed table is what it prints today. Without the venv the test fails, unless the run
+/// opted out of the external checks (`scripts/test.sh --skip-external`, counted).
 #[test]
 fn committed_shapely_table_is_current() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-    let python = root.join("peers/.venv/bin/python");
-    if !python.exists() {
-        eprintln!("peers/.venv absent: compared against the committed table only");
+    let Some(python) = external::peers_python(&root, "re-running shapely on the zones fixtures")
+    else {
         return;
-    }
+    };
     let output = std::process::Command::new(python)
         .arg(root.join("peers/zones_reference.py"))
         .arg(fixtures().join("zones.geojson"))

@@ -5,6 +5,9 @@
 
 use std::path::{Path, PathBuf};
 
+#[path = "../../tests/common/external.rs"]
+mod external;
+
 use serde::Deserialize;
 use sweep::stats;
 
@@ -281,16 +284,16 @@ fn lattice_step(values: &[f64]) -> f64 {
         })
 }
 
-/// When `peers/.venv` exists (made by `peers/stats_reference.py` or any peer script), re-run
-/// statsmodels / numpy / scipy and check the committed expected.json is what they print today.
-/// Without the venv only the committed file is used.
+/// Re-runs statsmodels, numpy and scipy (in `peers/.venv`, made by `python3
+/// peers/setup_venv.py`) and checks the committed expected.json is what they print today.
+/// Without the venv the test fails, unless the run opted out of the external checks
+/// (`scripts/test.sh --skip-external`, counted).
 #[test]
 fn committed_reference_is_current() {
-    let python = root().join("peers/.venv/bin/python");
-    if !python.exists() {
-        eprintln!("peers/.venv absent: compared against the committed expected.json only");
+    let Some(python) = external::peers_python(&root(), "re-running statsmodels, numpy and scipy")
+    else {
         return;
-    }
+    };
     let output = std::process::Command::new(python)
         .arg(root().join("peers/stats_reference.py"))
         .output()

@@ -3,6 +3,7 @@
 #![allow(dead_code)] // each test binary uses its own subset
 
 pub mod browser;
+pub mod external;
 pub mod killed_sweep;
 pub mod tiny;
 
@@ -132,27 +133,11 @@ pub fn manifest(out: &std::path::Path) -> serde_json::Value {
         .expect("json")
 }
 
-/// `peers/.venv`'s Python, or `None` when it does not exist, with `skipped` (what is not
-/// checked without it) said on stderr. Under `CI` its absence fails the test: `.ci/run`
-/// creates the venv (python3 -m venv peers/.venv && peers/.venv/bin/pip install -r
-/// peers/requirements.txt).
-pub fn peers_python(skipped: &str) -> Option<PathBuf> {
-    let python = root().join("peers/.venv/bin/python");
-    if python.exists() {
-        return Some(python);
-    }
-    assert!(
-        std::env::var_os("CI").is_none(),
-        "CI is set but {} does not exist: CI must create it (python3 -m venv peers/.venv && \
-         peers/.venv/bin/pip install -r peers/requirements.txt) and run {skipped}, not skip it",
-        python.display()
-    );
-    eprintln!(
-        "SKIPPED {skipped}: {} absent (python3 -m venv peers/.venv && peers/.venv/bin/pip \
-         install -r peers/requirements.txt creates it)",
-        python.display()
-    );
-    None
+/// `peers/.venv`'s Python, or `None` when it does not exist and the run opted out of the
+/// external checks (`check` is what then does not run); otherwise its absence fails the test,
+/// naming `python3 peers/setup_venv.py` ([`external::unavailable`]).
+pub fn peers_python(check: &str) -> Option<PathBuf> {
+    external::peers_python(&root(), check)
 }
 
 /// Runs solsim from the repository with `args` then `paths`, asserts exit 0, returns stdout.
