@@ -70,6 +70,7 @@ mod issue_26_terminal_escape;
 mod issue_27_calendar_fields;
 mod issue_27_ground_skips_driven_sols;
 mod issue_28_honest_test_command;
+mod issue_28_readme_figures;
 mod localize_cli;
 mod localizer_comparison;
 mod mars_time_mars24;
