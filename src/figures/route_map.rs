@@ -593,9 +593,12 @@ fn draw_map(
         } else {
             9
         };
+        // On a white tab, readable over a keep-out.
+        let w = (7.5 * label.len() as f64) as i32;
         chart
             .draw_series(std::iter::once(
                 EmptyElement::at(p)
+                    + Rectangle::new([(dx - 2, -18), (dx + w, -1)], WHITE.mix(0.85).filled())
                     + Cross::new((0, 0), 7, RED.stroke_width(3))
                     + Text::new(label, (dx, -16), ("sans-serif", 13).into_font().color(&RED)),
             ))
