@@ -43,8 +43,9 @@ pub struct ReportArgs {
     /// provenance names (relative paths are taken from the current directory).
     #[arg(long, value_name = "FILE")]
     pub scenario: Option<PathBuf>,
-    /// Grow the keep-outs on the map figures by this uncertainty r, metres [default: each
-    /// strategy's r at its first fault, else its largest end-of-sol r].
+    /// Grow the keep-outs on the whole-traverse maps and the fault zooms by this uncertainty r,
+    /// metres [default: each keep-out by the r the rover had where its path came closest to
+    /// it; each fault's zoom by the fault's r].
     #[arg(long, value_name = "R")]
     pub map_r_m: Option<f64>,
 }

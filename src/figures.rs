@@ -4,9 +4,10 @@
 //! - [`uncertainty_by_sol_svg`]: the position-uncertainty radius against sol, one line per
 //!   strategy (paper 000 Fig. 2 and 5);
 //! - [`metres_by_sol_svg`]: metres driven per sol, one bar per strategy;
-//! - [`route_map_svg`]: one strategy's traverse on the map — zones, keep-outs grown at a
-//!   chosen r, the route, the driven path, sol-end discs and faults (paper 000 Fig. 3-4), over
-//!   the whole traverse or zoomed on a window (a fault);
+//! - [`route_map_svg`]: one strategy's traverse on the map — zones, keep-outs grown by the r
+//!   the rover had where it passed each (or a chosen r), the route, the driven path, sol-end
+//!   discs and faults (paper 000 Fig. 3-4), over the whole traverse or zoomed on a window (a
+//!   fault); [`passages_svg`]: zoomed panels at each passage the path went through;
 //! - [`sol_plans_gantt_svg`]: each sol's executed plan as a Gantt chart, the co-processor
 //!   (HBS) chain on its own row.
 //!
@@ -15,19 +16,33 @@
 //!
 //! The rover: [`slip_profile_svg`], slip against slope per terrain class and heading.
 //!
-//! Every strategy has one colour in every figure ([`strategy_colour`]); legends sit below the
-//! plot, where they cover nothing.
+//! Every strategy has one colour in every figure ([`strategy_colour`]), and where lines of
+//! several strategies can coincide one dash pattern and marker ([`strategy_dash`],
+//! [`strategy_marker`]); legends sit below the plot, where they cover nothing.
 
-use geo::{BooleanOps as _, Coord, LineString, MultiLineString, MultiPolygon};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use sim::{CampaignOutcome, SolRecord, Strategy};
-use study::Scenario;
 use sweep::rows::RunRow;
 use sweep::summary::Rate;
 
+mod route_map;
+
+pub use route_map::{
+    Growth, Panel, REACH_M, ZoneMoment, fault_window, passage_panels, passages_svg, route_map_svg,
+    zone_moments,
+};
+
 /// Width of every figure, pixels (a map of a long traverse is wider).
 const WIDTH: u32 = 960;
+/// Width of a figure of a long traverse (over a kilometre, or more than 16 sols), pixels: the
+/// width of a laptop screen.
+const WIDE: u32 = 1400;
+
+/// The width of a figure with a sol axis from `first` to `last`.
+fn sols_width(first: u32, last: u32) -> u32 {
+    if last - first > 16 { WIDE } else { WIDTH }
+}
 /// Height of a legend row, pixels; three entries per row.
 const LEGEND_ROW: u32 = 20;
 /// Width of a legend column, pixels.
@@ -45,6 +60,101 @@ pub fn strategy_colour(strategy: Strategy) -> RGBColor {
     }
 }
 
+/// The dash pattern of a strategy's line where lines of several strategies can coincide (the
+/// uncertainty figure), as an SVG `stroke-dasharray` (empty: solid).
+#[must_use]
+pub fn strategy_dash(strategy: Strategy) -> &'static str {
+    match strategy {
+        Strategy::Replay => "10 5",
+        Strategy::Ground => "",
+        Strategy::Onboard => "6 3",
+        Strategy::Extension => "2 3",
+        Strategy::ExtensionOnboard => "12 4 2 4",
+    }
+}
+
+/// The shape marking a strategy's points where lines can coincide.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Marker {
+    /// A filled circle.
+    Circle,
+    /// A filled square.
+    Square,
+    /// A filled triangle, point up.
+    TriangleUp,
+    /// A filled triangle, point down.
+    TriangleDown,
+    /// A filled diamond.
+    Diamond,
+}
+
+/// The marker of a strategy, the same in every figure that uses markers.
+#[must_use]
+pub fn strategy_marker(strategy: Strategy) -> Marker {
+    match strategy {
+        Strategy::Replay => Marker::Square,
+        Strategy::Ground => Marker::Circle,
+        Strategy::Onboard => Marker::TriangleUp,
+        Strategy::Extension => Marker::Diamond,
+        Strategy::ExtensionOnboard => Marker::TriangleDown,
+    }
+}
+
+fn hex(c: RGBColor) -> String {
+    format!("#{:02X}{:02X}{:02X}", c.0, c.1, c.2)
+}
+
+/// SVG of `marker` centred at (x, y) pixels, about 7 px across, white-edged so it stays
+/// visible on a line of its own colour.
+fn marker_svg(marker: Marker, (x, y): (f64, f64), colour: RGBColor) -> String {
+    let paint = format!(
+        "fill=\"{}\" stroke=\"#FFFFFF\" stroke-width=\"0.8\"",
+        hex(colour)
+    );
+    let poly = |pts: &[(f64, f64)]| {
+        let pts: Vec<String> = pts
+            .iter()
+            .map(|(dx, dy)| format!("{:.1},{:.1}", x + dx, y + dy))
+            .collect();
+        format!("<polygon points=\"{}\" {paint}/>\n", pts.join(" "))
+    };
+    match marker {
+        Marker::Circle => format!("<circle cx=\"{x:.1}\" cy=\"{y:.1}\" r=\"3.5\" {paint}/>\n"),
+        Marker::Square => poly(&[(-3.2, -3.2), (3.2, -3.2), (3.2, 3.2), (-3.2, 3.2)]),
+        Marker::TriangleUp => poly(&[(0.0, -4.5), (4.0, 3.0), (-4.0, 3.0)]),
+        Marker::TriangleDown => poly(&[(0.0, 4.5), (4.0, -3.0), (-4.0, -3.0)]),
+        Marker::Diamond => poly(&[(0.0, -4.5), (4.0, 0.0), (0.0, 4.5), (-4.0, 0.0)]),
+    }
+}
+
+/// SVG of a strategy's styled line through `points` (pixels).
+fn styled_line_svg(points: &[(f64, f64)], strategy: Strategy) -> String {
+    let pts: Vec<String> = points
+        .iter()
+        .map(|(x, y)| format!("{x:.1},{y:.1}"))
+        .collect();
+    let dash = strategy_dash(strategy);
+    let dash = if dash.is_empty() {
+        String::new()
+    } else {
+        format!(" stroke-dasharray=\"{dash}\"")
+    };
+    format!(
+        "<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"2\"{dash} \
+         stroke-linejoin=\"round\" points=\"{}\"/>\n",
+        hex(strategy_colour(strategy)),
+        pts.join(" ")
+    )
+}
+
+/// `svg` with `extra` (SVG elements) inserted before its closing tag, so drawn on top.
+fn splice(mut svg: String, extra: &str) -> String {
+    if let Some(at) = svg.rfind("</svg>") {
+        svg.insert_str(at, extra);
+    }
+    svg
+}
+
 fn colour_of_name(name: &str) -> RGBColor {
     Strategy::from_name(name).map_or(RGBColor(90, 90, 90), strategy_colour)
 }
@@ -54,6 +164,9 @@ enum Mark {
     Fill(RGBAColor),
     Line(RGBColor, u32),
     Cross,
+    /// A strategy's dashed line and marker ([`strategy_dash`], [`strategy_marker`]): drawn
+    /// into the SVG after plotters, which has no dashes.
+    Styled(Strategy),
 }
 
 /// Legend entries: label and symbol.
@@ -77,6 +190,7 @@ fn draw_legend(area: &DrawingArea<SVGBackend<'_>, Shift>, entries: &Legend) -> a
                 c.stroke_width(*w),
             )),
             Mark::Cross => area.draw(&Cross::new((x + 8, y), 5, RED.stroke_width(2))),
+            Mark::Styled(_) => Ok(()),
         }
         .map_err(plot_error)?;
         area.draw(&Text::new(label.clone(), (x + 24, y - 7), font.clone()))
@@ -103,7 +217,22 @@ fn svg_with_legend(
         draw_legend(&lower, entries)?;
         root.present().map_err(plot_error)?;
     }
-    Ok(svg)
+    // The styled swatches, at the places draw_legend leaves them.
+    let mut extra = String::new();
+    for (k, (_, mark)) in entries.iter().enumerate() {
+        let Mark::Styled(strategy) = mark else {
+            continue;
+        };
+        let x = f64::from(72 + LEGEND_COLUMN * (k % 3) as i32);
+        let y = f64::from(plot_height) + f64::from(10 + LEGEND_ROW as i32 * (k / 3) as i32);
+        extra.push_str(&styled_line_svg(&[(x - 10.0, y), (x + 20.0, y)], *strategy));
+        extra.push_str(&marker_svg(
+            strategy_marker(*strategy),
+            (x + 5.0, y),
+            strategy_colour(*strategy),
+        ));
+    }
+    Ok(splice(svg, &extra))
 }
 
 /// The sols any outcome covers, as `first..last + 1`.
@@ -136,7 +265,7 @@ fn strategy_legend(outcomes: &[CampaignOutcome], bar: bool) -> Legend {
             let mark = if bar {
                 Mark::Fill(c.to_rgba())
             } else {
-                Mark::Line(c, 2)
+                Mark::Styled(o.strategy)
             };
             (o.strategy.name().to_string(), mark)
         })
@@ -155,6 +284,12 @@ fn strategy_legend(outcomes: &[CampaignOutcome], bar: bool) -> Legend {
 /// edge, so growth while driving and resets by localization both show; a drive that ended in
 /// a fault is marked with a red cross at its end.
 ///
+/// Strategies often share a line (the same drive, the same r), so each has its own dash
+/// pattern ([`strategy_dash`]) and a marker at the end of each drive ([`strategy_marker`]),
+/// and each line is shifted by 2 px down and right per strategy (centred: from −4 to +4 px
+/// with five), so coinciding lines lie side by side instead of hiding each other; 2 px is
+/// under 2 % of the axes' spans.
+///
 /// # Errors
 /// When plotters cannot draw (it does not fail on finite data).
 pub fn uncertainty_by_sol_svg(title: &str, outcomes: &[CampaignOutcome]) -> anyhow::Result<String> {
@@ -166,7 +301,8 @@ pub fn uncertainty_by_sol_svg(title: &str, outcomes: &[CampaignOutcome]) -> anyh
         .filter(|r| r.is_finite())
         .fold(1.0_f64, f64::max);
     let legend = strategy_legend(outcomes, false);
-    svg_with_legend(WIDTH, 440, &legend, |root| {
+    let mut lines = String::new();
+    let svg = svg_with_legend(sols_width(first, last), 440, &legend, |root| {
         let mut chart = ChartBuilder::on(root)
             .caption(title, ("sans-serif", 18))
             .margin(12)
@@ -183,39 +319,58 @@ pub fn uncertainty_by_sol_svg(title: &str, outcomes: &[CampaignOutcome]) -> anyh
             .x_label_formatter(&sol_label)
             .draw()
             .map_err(plot_error)?;
-        for o in outcomes {
-            let colour = strategy_colour(o.strategy);
-            let points: Vec<(f64, f64)> = o
-                .sols
-                .iter()
-                .flat_map(|s| {
-                    [
-                        (f64::from(s.sol), s.start_uncertainty_m),
-                        (f64::from(s.sol + 1), s.end_uncertainty_m),
-                    ]
-                })
-                .filter(|p| p.1.is_finite())
-                .collect();
-            chart
-                .draw_series(LineSeries::new(points, colour.stroke_width(2)))
-                .map_err(plot_error)?;
+        let n = outcomes.len();
+        for (i, o) in outcomes.iter().enumerate() {
+            let shift = 2.0 * (i as f64 - (n as f64 - 1.0) / 2.0);
+            let px = |x: f64, y: f64| {
+                let (a, b) = chart.backend_coord(&(x, y));
+                (f64::from(a) + shift, f64::from(b) + shift)
+            };
+            let mut points: Vec<(f64, f64)> = Vec::new();
+            let mut marks: Vec<(f64, f64)> = Vec::new();
+            for s in &o.sols {
+                if !(s.start_uncertainty_m.is_finite() && s.end_uncertainty_m.is_finite()) {
+                    continue;
+                }
+                points.push(px(f64::from(s.sol), s.start_uncertainty_m));
+                let end = px(f64::from(s.sol + 1), s.end_uncertainty_m);
+                points.push(end);
+                if s.drove {
+                    marks.push(end);
+                }
+            }
+            lines.push_str(&styled_line_svg(&points, o.strategy));
+            for m in marks {
+                lines.push_str(&marker_svg(
+                    strategy_marker(o.strategy),
+                    m,
+                    strategy_colour(o.strategy),
+                ));
+            }
         }
+        // Fault crosses over every line (red, two strokes, 12 px across).
         for o in outcomes {
-            let faults = o
-                .sols
-                .iter()
-                .filter(|s| s.fault.is_some() && s.end_uncertainty_m.is_finite())
-                .map(|s| {
-                    Cross::new(
-                        (f64::from(s.sol + 1), s.end_uncertainty_m),
-                        6,
-                        RED.stroke_width(2),
-                    )
-                });
-            chart.draw_series(faults).map_err(plot_error)?;
+            for s in &o.sols {
+                if s.fault.is_none() || !s.end_uncertainty_m.is_finite() {
+                    continue;
+                }
+                let (a, b) = chart.backend_coord(&(f64::from(s.sol + 1), s.end_uncertainty_m));
+                let (x, y) = (f64::from(a), f64::from(b));
+                for (dx, dy) in [(6.0, 6.0), (6.0, -6.0)] {
+                    lines.push_str(&format!(
+                        "<line x1=\"{:.1}\" y1=\"{:.1}\" x2=\"{:.1}\" y2=\"{:.1}\" \
+                         stroke=\"#FF0000\" stroke-width=\"2\"/>\n",
+                        x - dx,
+                        y - dy,
+                        x + dx,
+                        y + dy
+                    ));
+                }
+            }
         }
         Ok(())
-    })
+    })?;
+    Ok(splice(svg, &lines))
 }
 
 /// Metres driven on each sol, one bar per strategy side by side (a sol without a drive has
@@ -234,7 +389,7 @@ pub fn metres_by_sol_svg(title: &str, outcomes: &[CampaignOutcome]) -> anyhow::R
     let n = outcomes.len().max(1) as f64;
     let width = 0.8 / n;
     let legend = strategy_legend(outcomes, true);
-    svg_with_legend(WIDTH, 400, &legend, |root| {
+    svg_with_legend(sols_width(first, last), 400, &legend, |root| {
         let mut chart = ChartBuilder::on(root)
             .caption(title, ("sans-serif", 18))
             .margin(12)
@@ -280,378 +435,6 @@ pub fn metres_by_sol_svg(title: &str, outcomes: &[CampaignOutcome]) -> anyhow::R
                     )
                 });
             chart.draw_series(faults).map_err(plot_error)?;
-        }
-        Ok(())
-    })
-}
-
-/// The r at which [`route_map_svg`] grows the keep-outs by default: the uncertainty at the
-/// run's first fault, or else the largest end-of-sol uncertainty of the run.
-#[must_use]
-pub fn default_map_r_m(outcome: &CampaignOutcome) -> f64 {
-    outcome
-        .sols
-        .iter()
-        .find_map(|s| s.fault.as_ref().map(|f| f.uncertainty_m))
-        .unwrap_or_else(|| {
-            outcome
-                .sols
-                .iter()
-                .map(|s| s.end_uncertainty_m)
-                .filter(|r| r.is_finite())
-                .fold(0.0, f64::max)
-        })
-}
-
-/// The window (x0, y0, x1, y1, map metres) a zoom on a fault at `at` with uncertainty `r_m`
-/// shows: four grown radii around it, at least 60 m.
-#[must_use]
-pub fn fault_window(at: [f64; 2], r_m: f64, footprint_m: f64) -> [f64; 4] {
-    let half = (4.0 * (r_m.max(0.0) + footprint_m)).max(60.0);
-    [at[0] - half, at[1] - half, at[0] + half, at[1] + half]
-}
-
-/// Polygon vertices of a disc (for drawing in map metres, where a pixel-sized circle would not
-/// scale).
-fn disc(centre: [f64; 2], r: f64) -> Vec<(f64, f64)> {
-    (0..48)
-        .map(|k| {
-            let a = f64::from(k) * std::f64::consts::TAU / 48.0;
-            (centre[0] + r * a.cos(), centre[1] + r * a.sin())
-        })
-        .collect()
-}
-
-fn exterior(p: &geo::Polygon<f64>) -> Vec<(f64, f64)> {
-    p.exterior().coords().map(|c| (c.x, c.y)).collect()
-}
-
-/// The plotting area (pixels) of a map chart of `size` with `caption`, as [`route_map_svg`]
-/// builds it: measured on a throwaway drawing, so the axes can be given equal scale exactly.
-fn map_plot_area(size: (u32, u32), caption: &str) -> anyhow::Result<(u32, u32)> {
-    let mut scratch = String::new();
-    let root = SVGBackend::with_string(&mut scratch, size).into_drawing_area();
-    let chart = map_chart(&root, caption, [0.0, 0.0, 1.0, 1.0])?;
-    Ok(chart.plotting_area().dim_in_pixel())
-}
-
-type MapChart<'a, 'b> = ChartContext<
-    'a,
-    SVGBackend<'b>,
-    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
->;
-
-fn map_chart<'a, 'b>(
-    area: &'a DrawingArea<SVGBackend<'b>, Shift>,
-    caption: &str,
-    [x0, y0, x1, y1]: [f64; 4],
-) -> anyhow::Result<MapChart<'a, 'b>> {
-    ChartBuilder::on(area)
-        .caption(caption, ("sans-serif", 16))
-        .margin(12)
-        .x_label_area_size(36)
-        .y_label_area_size(64)
-        .build_cartesian_2d(x0..x1, y0..y1)
-        .map_err(plot_error)
-}
-
-/// One strategy's traverse on the map, in map metres with equal scale on both axes:
-/// - keep-out zones filled grey, and grown by `r_m` plus the rover footprint (the region the
-///   rover's centre must avoid at that uncertainty) in orange;
-/// - the keep-in union outlined, and shrunk by the same distance in a thin line;
-/// - the route in black with its waypoints; the driven path in the strategy's colour, each
-///   drive sol's end labelled with the sol (where there is room) and circled by its end-of-sol
-///   uncertainty disc;
-/// - faults as red crosses, named.
-///
-/// `window` (x0, y0, x1, y1, map metres) zooms on a part (a fault: [`fault_window`]); without
-/// it the map shows the route and the driven paths with a margin.
-///
-/// # Errors
-/// When plotters cannot draw.
-pub fn route_map_svg(
-    scenario: &Scenario,
-    outcome: &CampaignOutcome,
-    r_m: f64,
-    window: Option<[f64; 4]>,
-) -> anyhow::Result<String> {
-    let colour = strategy_colour(outcome.strategy);
-    let footprint_m = scenario.campaign.grid.footprint_radius_m;
-    let grow_m = r_m.max(0.0) + footprint_m;
-    let [mut x0, mut y0, mut x1, mut y1] = match window {
-        Some(w) => w,
-        None => {
-            let mut pts: Vec<[f64; 2]> = scenario.campaign.route.clone();
-            for s in &outcome.sols {
-                pts.extend(s.path_m.iter().copied());
-            }
-            pts.retain(|p| p[0].is_finite() && p[1].is_finite());
-            let (a, b, c, d) = pts.iter().fold(
-                (f64::MAX, f64::MAX, f64::MIN, f64::MIN),
-                |(a, b, c, d), p| (a.min(p[0]), b.min(p[1]), c.max(p[0]), d.max(p[1])),
-            );
-            let (a, b, c, d) = if a > c {
-                (0.0, 0.0, 1.0, 1.0)
-            } else {
-                (a, b, c, d)
-            };
-            let max_disc = outcome
-                .sols
-                .iter()
-                .map(|s| s.end_uncertainty_m)
-                .filter(|r| r.is_finite())
-                .fold(0.0, f64::max);
-            let span: f64 = (c - a).max(d - b);
-            let pad = (0.04 * span)
-                .max(grow_m * 1.2)
-                .max(max_disc.min(0.25 * span))
-                .max(10.0);
-            [a - pad, b - pad, c + pad, d + pad]
-        }
-    };
-    // Size: a long traverse gets a wider figure; the plot is as tall as the extent needs at
-    // that width (260-900 px), and the ranges are then widened so one metre is the same number
-    // of pixels on both axes, measured on the plotting area itself.
-    let aspect = (x1 - x0) / (y1 - y0);
-    let width = if aspect > 4.0 { 1400 } else { WIDTH };
-    let title = match window {
-        None => format!(
-            "{}: {} — keep-outs grown by r = {r_m:.2} m + {footprint_m:.2} m footprint",
-            scenario.name,
-            outcome.strategy.name()
-        ),
-        Some(_) => format!(
-            "{}: {} near its fault — keep-outs grown by r = {r_m:.2} m + {footprint_m:.2} m footprint",
-            scenario.name,
-            outcome.strategy.name()
-        ),
-    };
-    let (pw0, ph0) = map_plot_area((width, 600), &title)?;
-    let want_h = (f64::from(pw0) / aspect).clamp(260.0, 900.0);
-    let height = 600 - ph0 + want_h.round() as u32;
-    let (pw, ph) = map_plot_area((width, height), &title)?;
-    let scale = ((x1 - x0) / f64::from(pw)).max((y1 - y0) / f64::from(ph));
-    let (cx, cy) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
-    (x0, x1) = (
-        cx - scale * f64::from(pw) / 2.0,
-        cx + scale * f64::from(pw) / 2.0,
-    );
-    (y0, y1) = (
-        cy - scale * f64::from(ph) / 2.0,
-        cy + scale * f64::from(ph) / 2.0,
-    );
-
-    let frame: geo::Polygon<f64> =
-        geo::Rect::new(Coord { x: x0, y: y0 }, Coord { x: x1, y: y1 }).to_polygon();
-    let clip_area = |m: &MultiPolygon<f64>| m.intersection(&frame);
-    // Outlines are cut as lines, so the frame's edge is never drawn as a zone's.
-    let clip_rings = |m: &MultiPolygon<f64>| -> Vec<Vec<(f64, f64)>> {
-        let rings: Vec<LineString<f64>> = m
-            .iter()
-            .flat_map(|p| {
-                std::iter::once(p.exterior().clone()).chain(p.interiors().iter().cloned())
-            })
-            .collect();
-        frame
-            .clip(&MultiLineString::new(rings), false)
-            .into_iter()
-            .map(|l| l.coords().map(|c| (c.x, c.y)).collect())
-            .collect()
-    };
-    let grey = RGBColor(120, 120, 120);
-    let orange = RGBColor(255, 160, 60);
-    let keep_in_colour = RGBColor(170, 120, 0);
-    let mut legend: Legend = Vec::new();
-    if scenario.zones.keep_outs().next().is_some() {
-        legend.push((
-            format!("keep-out grown by {grow_m:.2} m"),
-            Mark::Fill(orange.mix(0.45)),
-        ));
-        legend.push(("keep-out".into(), Mark::Fill(grey.to_rgba())));
-    }
-    if scenario.zones.keep_ins().next().is_some() {
-        legend.push((
-            "keep-in edge; thin: shrunk by the same".into(),
-            Mark::Line(keep_in_colour, 2),
-        ));
-    }
-    legend.push(("route and waypoints".into(), Mark::Line(BLACK, 1)));
-    legend.push((
-        format!(
-            "{} path, sol-end uncertainty discs",
-            outcome.strategy.name()
-        ),
-        Mark::Line(colour, 2),
-    ));
-    if outcome.sols.iter().any(|s| s.fault.is_some()) {
-        legend.push(("fault".into(), Mark::Cross));
-    }
-    svg_with_legend(width, height, &legend, |root| {
-        let mut chart = map_chart(root, &title, [x0, y0, x1, y1])?;
-        chart
-            .configure_mesh()
-            .disable_mesh()
-            .x_desc("x, map metres east")
-            .y_desc("y, map metres north")
-            .draw()
-            .map_err(plot_error)?;
-        // The same offsets the GIS layers carry (maps::zone::offset).
-        for (_, grown) in scenario.zones.keep_outs_grown(grow_m) {
-            chart
-                .draw_series(
-                    clip_area(&grown)
-                        .iter()
-                        .map(|p| Polygon::new(exterior(p), orange.mix(0.45).filled())),
-                )
-                .map_err(plot_error)?;
-        }
-        for (_, z) in scenario.zones.keep_outs() {
-            let inside = clip_area(z.geometry());
-            chart
-                .draw_series(
-                    inside
-                        .iter()
-                        .map(|p| Polygon::new(exterior(p), grey.filled())),
-                )
-                .map_err(plot_error)?;
-            // Holes (rare in a keep-out) are open ground again.
-            for p in &inside {
-                chart
-                    .draw_series(p.interiors().iter().map(|ring| {
-                        Polygon::new(
-                            ring.coords().map(|c| (c.x, c.y)).collect::<Vec<_>>(),
-                            WHITE.filled(),
-                        )
-                    }))
-                    .map_err(plot_error)?;
-            }
-        }
-        for (distance, width) in [(0.0, 2), (grow_m, 1)] {
-            let Some(area) = scenario.zones.keep_in_shrunk(distance) else {
-                continue;
-            };
-            chart
-                .draw_series(
-                    clip_rings(&area)
-                        .into_iter()
-                        .map(|r| PathElement::new(r, keep_in_colour.stroke_width(width))),
-                )
-                .map_err(plot_error)?;
-        }
-        let route: Vec<(f64, f64)> = scenario
-            .campaign
-            .route
-            .iter()
-            .map(|p| (p[0], p[1]))
-            .collect();
-        let inside = |p: (f64, f64)| p.0 >= x0 && p.0 <= x1 && p.1 >= y0 && p.1 <= y1;
-        let route_lines = frame.clip(
-            &MultiLineString::new(vec![LineString::from(route.clone())]),
-            false,
-        );
-        chart
-            .draw_series(route_lines.into_iter().map(|l| {
-                PathElement::new(
-                    l.coords().map(|c| (c.x, c.y)).collect::<Vec<_>>(),
-                    BLACK.stroke_width(1),
-                )
-            }))
-            .map_err(plot_error)?;
-        chart
-            .draw_series(
-                route
-                    .iter()
-                    .filter(|p| inside(**p))
-                    .map(|&p| Circle::new(p, 3, BLACK.filled())),
-            )
-            .map_err(plot_error)?;
-        for s in &outcome.sols {
-            let path: Vec<LineString<f64>> = vec![LineString::from(
-                s.path_m
-                    .iter()
-                    .filter(|p| p[0].is_finite() && p[1].is_finite())
-                    .map(|p| (p[0], p[1]))
-                    .collect::<Vec<_>>(),
-            )];
-            if path[0].0.len() < 2 {
-                continue;
-            }
-            chart
-                .draw_series(
-                    frame
-                        .clip(&MultiLineString::new(path), false)
-                        .into_iter()
-                        .map(|l| {
-                            PathElement::new(
-                                l.coords().map(|c| (c.x, c.y)).collect::<Vec<_>>(),
-                                colour.stroke_width(2),
-                            )
-                        }),
-                )
-                .map_err(plot_error)?;
-        }
-        // Sol labels only where they do not overlap one already placed (36 px apart).
-        let mut labelled: Vec<(f64, f64)> = Vec::new();
-        for s in outcome.sols.iter().filter(|s| s.drove) {
-            let end = s.end_position_m;
-            if !(end[0].is_finite() && end[1].is_finite() && s.end_uncertainty_m.is_finite()) {
-                continue;
-            }
-            let mut ring = disc(end, s.end_uncertainty_m);
-            ring.push(ring[0]);
-            let ring = frame.clip(
-                &MultiLineString::new(vec![LineString::from(ring.clone())]),
-                false,
-            );
-            let at = (end[0], end[1]);
-            if inside(at) {
-                chart
-                    .draw_series(std::iter::once(Polygon::new(
-                        disc(end, s.end_uncertainty_m),
-                        colour.mix(0.10).filled(),
-                    )))
-                    .map_err(plot_error)?;
-            }
-            chart
-                .draw_series(ring.into_iter().map(|l| {
-                    PathElement::new(
-                        l.coords().map(|c| (c.x, c.y)).collect::<Vec<_>>(),
-                        colour.stroke_width(1),
-                    )
-                }))
-                .map_err(plot_error)?;
-            let far = |q: &(f64, f64)| (q.0 - at.0).hypot(q.1 - at.1) / scale > 36.0;
-            if inside(at) && labelled.iter().all(far) {
-                labelled.push(at);
-                chart
-                    .draw_series(std::iter::once(
-                        EmptyElement::at(at)
-                            + Text::new(
-                                format!("{}", s.sol),
-                                (3, 3),
-                                ("sans-serif", 12).into_font().color(&BLACK),
-                            ),
-                    ))
-                    .map_err(plot_error)?;
-            }
-        }
-        for s in &outcome.sols {
-            let Some(f) = &s.fault else { continue };
-            let p = (f.position_m[0], f.position_m[1]);
-            if !(p.0.is_finite() && p.1.is_finite() && inside(p)) {
-                continue;
-            }
-            chart
-                .draw_series(std::iter::once(
-                    EmptyElement::at(p)
-                        + Cross::new((0, 0), 7, RED.stroke_width(3))
-                        + Text::new(
-                            format!("{} sol {}", f.kind.name(), s.sol),
-                            (9, -16),
-                            ("sans-serif", 13).into_font().color(&RED),
-                        ),
-                ))
-                .map_err(plot_error)?;
         }
         Ok(())
     })

@@ -368,7 +368,7 @@ fn science_table(outcomes: &[CampaignOutcome], s: &mut String) {
 }
 
 /// What kind of sol a drive was gained on: the calendar's reasons the ground could not use it.
-fn sol_kinds(entry: &sim::SolEntry) -> Vec<&'static str> {
+pub(crate) fn sol_kinds(entry: &sim::SolEntry) -> Vec<&'static str> {
     let mut k = Vec::new();
     if entry.restricted {
         k.push("restricted");

@@ -13,7 +13,11 @@ use sim::CampaignOutcome;
 use study::Scenario;
 use sweep::engine::{CompletedSweep, Summary};
 
-use crate::{figures, report, report_runs};
+use crate::{figures, report_runs};
+
+mod run_tables;
+
+use run_tables::{against_ground_table, sol_log_table};
 
 /// Text for HTML: `&`, `<`, `>` and quotes escaped.
 #[must_use]
@@ -34,8 +38,9 @@ pub fn escape(text: &str) -> String {
 
 /// The figures of one compare run, as (file name, caption, SVG): the uncertainty radius and
 /// the metres per sol of every strategy, and per strategy its map (keep-outs grown at
-/// `map_r_m`, or by default at its first fault's r, else its largest r) and, where its sols
-/// were planned, the Gantt chart of the plans.
+/// `map_r_m`, or by default each at the r the rover had where it passed it), the zoomed panels
+/// at its passages, a zoom on each fault and, where its sols were planned, the Gantt chart of
+/// the plans.
 ///
 /// # Errors
 /// When a figure cannot be drawn.
@@ -49,7 +54,9 @@ pub fn run_figures(
         (
             format!("{name}.uncertainty.svg"),
             "Position-uncertainty radius r per sol: growth while driving, drops where a \
-             localization resets it, red crosses at faults (paper 000 Fig. 2 and 5)."
+             localization resets it, red crosses at faults (paper 000 Fig. 2 and 5). Each \
+             strategy has its own dash pattern and a marker at the end of each drive, and the \
+             lines are shifted 2 px apart, so where strategies share a line all stay visible."
                 .to_string(),
             figures::uncertainty_by_sol_svg(
                 &format!("{name}: uncertainty radius r per sol"),
@@ -65,23 +72,49 @@ pub fn run_figures(
     ];
     for o in outcomes {
         let strategy = o.strategy.name();
-        let r = map_r_m.unwrap_or_else(|| figures::default_map_r_m(o));
-        let why = if map_r_m.is_some() {
-            "as asked (--map-r-m)"
-        } else if o.sols.iter().any(|s| s.fault.is_some()) {
-            "the uncertainty at its first fault"
+        let (growth, how) = match map_r_m {
+            Some(r) => (
+                figures::Growth::At(r),
+                format!(
+                    "keep-outs grown by r = {r:.1} m (as asked, --map-r-m) plus the rover footprint"
+                ),
+            ),
+            None => (
+                figures::Growth::AtTheMoment,
+                format!(
+                    "each keep-out grown by the r the rover had where its path came closest to it, \
+                     plus the rover footprint (light grey: never within {:.0} m of the path, not \
+                     grown)",
+                    figures::REACH_M
+                ),
+            ),
+        };
+        let passages = figures::passages_svg(scenario, o)?;
+        let boxes = if passages.is_some() && map_r_m.is_none() {
+            "; the lettered boxes are the zoomed panels of the next figure"
         } else {
-            "its largest end-of-sol uncertainty"
+            ""
         };
         out.push((
             format!("{name}.{strategy}.map.svg"),
             format!(
-                "{strategy} on the map: keep-outs grown by r = {r:.1} m ({why}) plus the rover \
-                 footprint, the route, the driven path, each sol's end with its uncertainty \
-                 disc, faults in red (paper 000 Fig. 3-4)."
+                "{strategy} on the map: {how}; the route, the driven path, each sol's end with its \
+                 uncertainty disc, faults in red{boxes} (paper 000 Fig. 3-4)."
             ),
-            figures::route_map_svg(scenario, o, r, None)?,
+            figures::route_map_svg(scenario, o, growth, None)?,
         ));
+        if let Some(svg) = passages {
+            out.push((
+                format!("{name}.{strategy}.passages.svg"),
+                format!(
+                    "{strategy} at each passage it drove through, zoomed: the keep-outs grown by the \
+                     r it had at its closest pass (the dot, with its uncertainty disc) plus the rover \
+                     footprint, so a passage is drawn as open or closed as it was when the rover got \
+                     there."
+                ),
+                svg,
+            ));
+        }
         // A zoom on each fault, at the fault's own r (paper 000 Fig. 4 shows sol 385's).
         let footprint_m = scenario.campaign.grid.footprint_radius_m;
         for s in &o.sols {
@@ -101,7 +134,7 @@ pub fn run_figures(
                 figures::route_map_svg(
                     scenario,
                     o,
-                    r_fault,
+                    figures::Growth::At(r_fault),
                     Some(figures::fault_window(f.position_m, r_fault, footprint_m)),
                 )?,
             ));
@@ -122,14 +155,19 @@ pub fn run_figures(
     Ok(out)
 }
 
-const STYLE: &str = "body{font-family:sans-serif;margin:2em auto;max-width:1100px;color:#222;\
+/// The page: up to 1320 px of text and figures (a 1400 px figure is shown nearly at its size
+/// on a 1400 px screen); tables wrap their header and text cells to fit, and sit in a
+/// container that scrolls sideways rather than cut a column off if a table still does not fit.
+const STYLE: &str = "body{font-family:sans-serif;margin:2em auto;max-width:1320px;color:#222;\
 padding:0 1em}h1{font-size:1.6em}h2{margin-top:2em;border-bottom:1px solid #ccc}\
 table{border-collapse:collapse;font-size:.85em;margin:.5em 0}\
 th,td{border:1px solid #ccc;padding:2px 6px;text-align:right}\
-th{background:#f2f2f2}td:first-child,th:first-child{text-align:left}\
+th{background:#f2f2f2;vertical-align:bottom}td{vertical-align:top}\
+td:first-child,th:first-child,td.l,th.l{text-align:left}\
 pre{background:#f7f7f7;padding:.8em;overflow-x:auto;font-size:.85em}\
 figure{margin:1.5em 0}figure svg{max-width:100%;height:auto;border:1px solid #eee}\
-figcaption{font-size:.9em;color:#555}.scroll{overflow-x:auto}.meta td,.meta th{text-align:left}";
+figcaption{font-size:.9em;color:#555}.scroll{overflow-x:auto;max-width:100%}\
+.meta td,.meta th{text-align:left}";
 
 fn page(title: &str, body: &str) -> String {
     format!(
@@ -153,12 +191,23 @@ fn figure_html(s: &mut String, id: &str, caption: &str, svg: &str) {
 
 /// A table from rows of cells (the first row is the header).
 fn table(s: &mut String, class: &str, rows: &[Vec<String>]) {
+    table_aligned(s, class, rows, &[]);
+}
+
+/// A table from rows of cells (the first row is the header), the columns `left` (text)
+/// aligned left, the others (numbers) right.
+fn table_aligned(s: &mut String, class: &str, rows: &[Vec<String>], left: &[usize]) {
     let _ = writeln!(s, "<div class=\"scroll\"><table class=\"{class}\">");
     for (i, row) in rows.iter().enumerate() {
         let tag = if i == 0 { "th" } else { "td" };
         s.push_str("<tr>");
-        for cell in row {
-            let _ = write!(s, "<{tag}>{}</{tag}>", escape(cell));
+        for (j, cell) in row.iter().enumerate() {
+            let align = if j > 0 && left.contains(&j) {
+                " class=\"l\""
+            } else {
+                ""
+            };
+            let _ = write!(s, "<{tag}{align}>{}</{tag}>", escape(cell));
         }
         s.push_str("</tr>\n");
     }
@@ -177,27 +226,6 @@ fn meta_table(s: &mut String, rows: &[[String; 2]]) {
         );
     }
     s.push_str("</table>\n");
-}
-
-/// Splits one line of the sol-log CSV (RFC 4180 quoting).
-fn csv_fields(line: &str) -> Vec<String> {
-    let mut fields = Vec::new();
-    let mut field = String::new();
-    let mut quoted = false;
-    let mut chars = line.chars().peekable();
-    while let Some(c) = chars.next() {
-        match (c, quoted) {
-            ('"', true) if chars.peek() == Some(&'"') => {
-                field.push('"');
-                chars.next();
-            }
-            ('"', _) => quoted = !quoted,
-            (',', false) => fields.push(std::mem::take(&mut field)),
-            (c, _) => field.push(c),
-        }
-    }
-    fields.push(field);
-    fields
 }
 
 /// The HTML report of one compare run: `outcomes` of `scenario` on its seed, `over_runs` when
@@ -280,11 +308,7 @@ pub fn run_report(
     }
     table(&mut s, "compare", &rows);
     science_table(&mut s, outcomes);
-    let verdict = report::against_ground(scenario, outcomes);
-    if !verdict.trim().is_empty() {
-        s.push_str("<h2 id=\"verdict\">Against ground-in-the-loop</h2>\n");
-        let _ = writeln!(s, "<pre>{}</pre>", escape(verdict.trim_end()));
-    }
+    against_ground_table(&mut s, scenario, outcomes);
     if let Some(summary) = over_runs {
         let left = scenario.study_segment.map(|g| cal.sols_from(g.from_sol));
         let _ = writeln!(
@@ -299,12 +323,14 @@ pub fn run_report(
     for (name, caption, svg) in figures {
         figure_html(&mut s, name, caption, svg);
     }
-    s.push_str("<h2 id=\"sol-logs\">Sol logs</h2>\n");
+    s.push_str(
+        "<h2 id=\"sol-logs\">Sol logs</h2>\n<p>Each strategy's sols; every column, under its \
+         machine name, is in <code>&lt;scenario&gt;.&lt;strategy&gt;.sols.csv</code> beside the \
+         run.</p>\n",
+    );
     for o in outcomes {
         let _ = writeln!(s, "<h3 id=\"sols-{0}\">{0}</h3>", escape(o.strategy.name()));
-        let csv = report::sols_csv(o);
-        let rows: Vec<Vec<String>> = csv.lines().map(csv_fields).collect();
-        table(&mut s, "sols", &rows);
+        sol_log_table(&mut s, o);
         let changes: Vec<String> = o
             .sols
             .iter()

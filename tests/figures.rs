@@ -1,9 +1,10 @@
 //! Figures (issue 13, item 1): `solsim compare` writes beside its other files
 //! `<scenario>.uncertainty.svg`, the uncertainty radius against sol per strategy (paper 000
 //! Fig. 2 and 5), `<scenario>.metres.svg`, metres per sol, and per strategy
-//! `<scenario>.<strategy>.map.svg` (zones, keep-outs grown at the fault's r, route, path,
-//! sol-end discs, faults; Fig. 3-4) and `<scenario>.<strategy>.plans.svg` (each sol's plan as a
-//! Gantt chart with the HBS chain). Every SVG is well-formed XML (Python's
+//! `<scenario>.<strategy>.map.svg` (zones, keep-outs grown by the r of the closest pass, route,
+//! path, sol-end discs, faults; Fig. 3-4), `<scenario>.<strategy>.passages.svg` (the same zoomed
+//! at each passage), `<scenario>.<strategy>.fault-sol<N>.map.svg` (a fault at its r) and
+//! `<scenario>.<strategy>.plans.svg` (each sol's plan as a Gantt chart with the HBS chain). Every SVG is well-formed XML (Python's
 //! `xml.etree.ElementTree` parses it), shows what it claims from the run's own JSON, and is
 //! the same byte for byte on a second run.
 
@@ -81,8 +82,9 @@ fn compare_writes_the_uncertainty_figure() {
             "sol {sol}"
         );
     }
-    // One line per strategy, plus the legend's five swatches.
-    assert!(svg.matches("<polyline").count() >= 5, "{svg}");
+    // One line per strategy, plus the legend's five swatches (tests/issue_28_strategy_lines_distinct.rs
+    // checks their dashes and markers).
+    assert!(svg.matches("<polyline").count() >= 10, "{svg}");
     // The replay faults NO_PATH on sol 385: a red cross (two red strokes).
     assert!(svg.contains("#FF0000"), "the fault marker");
     // Deterministic.
@@ -129,7 +131,7 @@ fn compare_writes_maps_metres_and_plan_figures_from_the_run() {
         "extension",
         "extension+onboard",
     ] {
-        for kind in ["map", "plans"] {
+        for kind in ["map", "passages", "plans"] {
             let n = format!("crater-floor-passage.{strategy}.{kind}.svg");
             assert!(names.contains(&n), "{n} in {names:?}");
         }
@@ -138,8 +140,9 @@ fn compare_writes_maps_metres_and_plan_figures_from_the_run() {
     let read = |n: &str| std::fs::read_to_string(out.join(n)).expect("figure");
     let text = |svg: &str, t: &str| svg.contains(&format!("\n{t}\n</text>"));
 
-    // The replay's map grows the keep-outs by its fault's r (from its JSON) plus the footprint,
-    // and marks the NO_PATH on sol 385.
+    // The replay's fault zoom grows the keep-outs by its fault's r (from its JSON) plus the
+    // footprint, and marks the NO_PATH on sol 385; its whole map grows each keep-out by the r
+    // of the closest pass instead (tests/issue_28_keep_outs_at_the_moment.rs).
     let replay = run_doc(&out, "crater-floor-passage.replay.json");
     let fault = replay["sols"]
         .as_array()
@@ -148,10 +151,19 @@ fn compare_writes_maps_metres_and_plan_figures_from_the_run() {
         .find_map(|s| s["fault"].as_object().cloned())
         .expect("the replay faults");
     let r = fault["uncertainty_m"].as_f64().expect("r");
+    let zoom = read("crater-floor-passage.replay.fault-sol385.map.svg");
+    assert!(
+        zoom.contains(&format!("keep-outs grown by r = {r:.2} m")),
+        "the zoom's title names the fault's r {r:.2}"
+    );
+    assert!(
+        text(&zoom, "NO_PATH sol 385"),
+        "the fault is labelled on the zoom"
+    );
     let map = read("crater-floor-passage.replay.map.svg");
     assert!(
-        map.contains(&format!("keep-outs grown by r = {r:.2} m")),
-        "title names the fault's r {r:.2}"
+        map.contains("each keep-out grown by the r at the closest pass"),
+        "the map's title says how the keep-outs are grown"
     );
     assert!(text(&map, "NO_PATH sol 385"), "the fault is labelled");
     for legend in ["keep-out", "route and waypoints", "fault"] {
@@ -175,9 +187,14 @@ fn compare_writes_maps_metres_and_plan_figures_from_the_run() {
             assert!(drove.contains(&sol), "sol {sol} labelled but did not drive");
         }
     }
-    // Ground never faults here: no fault in its legend, r is its largest end-of-sol r.
+    // Ground never faults here: no fault in its legend. Its passages are drawn at the r of
+    // each pass, none above its largest end-of-sol r, and the map names no single r.
     let ground_map = read("crater-floor-passage.ground.map.svg");
     assert!(!text(&ground_map, "fault"), "no fault legend for ground");
+    assert!(
+        !ground_map.contains("grown by r = "),
+        "no single r on the map"
+    );
     let ground = run_doc(&out, "crater-floor-passage.ground.json");
     let max_r = ground["sols"]
         .as_array()
@@ -185,10 +202,24 @@ fn compare_writes_maps_metres_and_plan_figures_from_the_run() {
         .iter()
         .filter_map(|s| s["end_uncertainty_m"].as_f64())
         .fold(0.0, f64::max);
-    assert!(
-        ground_map.contains(&format!("r = {max_r:.2} m")),
-        "largest r {max_r:.2}"
-    );
+    let passages = read("crater-floor-passage.ground.passages.svg");
+    let rs: Vec<f64> = passages
+        .split(" at r = ")
+        .skip(1)
+        .flat_map(|t| {
+            let t = t.split(" m\n").next().expect("r");
+            t.split('-')
+                .map(|x| x.parse::<f64>().expect("r in a caption"))
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    assert!(!rs.is_empty(), "a passage panel with its r");
+    for r in rs {
+        assert!(
+            (0.0..=max_r + 0.005).contains(&r),
+            "{r} against largest {max_r}"
+        );
+    }
 
     // The onboard plans: a row per planned sol and an HBS row under each sol that ran the
     // co-processor chain.

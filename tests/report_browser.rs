@@ -63,7 +63,7 @@ fn the_sol383_386_report_renders_in_chromium() {
         ],
         &[&run],
     );
-    let Some(page) = check_report(&run.join("report.html"), 13) else {
+    let Some(page) = check_report(&run.join("report.html"), 18) else {
         return;
     };
     // The first figures (uncertainty per sol, metres per sol) are on screen: the strategies'

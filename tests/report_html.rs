@@ -60,8 +60,9 @@ fn compare_report_and_report_of_the_directory_are_the_same_page() {
         .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
         .filter(|n| n.ends_with(".svg"))
         .collect();
-    // Uncertainty and metres; per strategy a map and the plans; the replay's sol-385 zoom.
-    assert_eq!(svgs.len(), 13, "{svgs:?}");
+    // Uncertainty and metres; per strategy a map, its passages and the plans; the replay's
+    // sol-385 zoom.
+    assert_eq!(svgs.len(), 18, "{svgs:?}");
     assert_eq!(html.matches("<figure").count(), svgs.len());
     assert_eq!(html.matches("<svg").count(), svgs.len());
     for n in &svgs {
@@ -84,15 +85,24 @@ fn compare_report_and_report_of_the_directory_are_the_same_page() {
             "{strategy} log"
         );
     }
-    // The replay's NO_PATH on sol 385 is in its sol log.
-    assert!(html.contains("<td>replay</td><td>385</td>"), "sol 385 row");
-    assert!(html.contains("<td>NO_PATH</td>"), "the fault in the log");
+    // The replay's NO_PATH on sol 385 is in its sol log (the log under its heading, a row per
+    // sol starting with the sol).
+    let replay_log = html
+        .split("id=\"sols-replay\"")
+        .nth(1)
+        .and_then(|t| t.split("<h3").next())
+        .expect("the replay's log");
+    assert!(replay_log.contains("<tr><td>385</td>"), "sol 385 row");
+    assert!(
+        replay_log.contains("NO_PATH after "),
+        "the fault in the log"
+    );
 
     // `solsim report` on the directory gives the same page, byte for byte (the run is
     // regenerated from the scenario and checked against the directory first).
     let again = dir.path().join("report");
     let stdout = run_ok(&["report"], &[&run, Path::new("--out"), &again]);
-    assert!(stdout.contains("13 figures inline"), "{stdout}");
+    assert!(stdout.contains("18 figures inline"), "{stdout}");
     assert_eq!(read(&again.join("report.html")), html);
 }
 

@@ -16,7 +16,7 @@ use geo::algorithm::buffer::{BufferStyle, LineJoin};
 use geo::orient::{Direction, Orient};
 use geo::{Buffer, Coord, LineString, MultiPolygon, Polygon, unary_union};
 
-use super::{ZoneHandle, ZoneKind, ZoneSet};
+use super::{Zone, ZoneHandle, ZoneKind, ZoneSet};
 
 /// Longest chord of a grown corner's arc, as a fraction of the growth distance (radians of arc
 /// per chord).
@@ -235,6 +235,19 @@ fn wrap_angle(a: f64) -> f64 {
         w - std::f64::consts::TAU
     } else {
         w
+    }
+}
+
+impl Zone {
+    /// The zone grown by `distance_m` (its Minkowski sum with a disc of that radius), exterior
+    /// rings counter-clockwise, as [`ZoneSet::keep_outs_grown`] grows each keep-out: for a map
+    /// that grows each zone by a radius of its own.
+    ///
+    /// # Units
+    /// Metres, like the zone.
+    #[must_use]
+    pub fn grown(&self, distance_m: f64) -> MultiPolygon<f64> {
+        grow(self.geometry(), distance_m)
     }
 }
 
