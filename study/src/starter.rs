@@ -191,6 +191,20 @@ impl Starter {
                 num(options.map_margin_m),
             ));
         }
+        let duplicate = |p: &TrackPoint, i: usize| {
+            err(
+                &p.at,
+                format!(
+                    "a point apart from the one before it ({}): consecutive points at the same \
+                     millimetre are a duplicate",
+                    track[i - 1].at
+                ),
+                format!(
+                    "{}° E {}° N, the same position",
+                    p.lonlat_deg[0], p.lonlat_deg[1]
+                ),
+            )
+        };
         let lon0 = first.lonlat_deg[0];
         let mut lonlat = Vec::with_capacity(track.len());
         for p in track {
@@ -203,6 +217,11 @@ impl Starter {
                 ));
             }
             let lon = lon - 360.0 * ((lon - lon0) / 360.0).round();
+            if let Some(prev) = lonlat.last()
+                && *prev == [lon, lat]
+            {
+                return Err(duplicate(p, lonlat.len()));
+            }
             lonlat.push([lon, lat]);
         }
         // The route's first point at a provisional map origin, then the whole route shifted
@@ -263,9 +282,8 @@ impl Starter {
             return Err(err(
                 "track",
                 format!(
-                    "a track whose map (margin {} m, {resolution} m pixels) is at most {max_side} \
+                    "a track whose map (margin {m} m, {resolution} m pixels) is at most {max_side} \
                      px, {} km, a side",
-                    num(m),
                     max_side as f64 * resolution / 1000.0
                 ),
                 format!("{track_km}: {} × {} px", map_px[0], map_px[1]),
@@ -292,9 +310,8 @@ impl Starter {
             return Err(err(
                 "track",
                 format!(
-                    "a track whose map (margin {} m) and planning grid fit the memory budget \
+                    "a track whose map (margin {m} m) and planning grid fit the memory budget \
                      ({}; --memory-budget-mib)",
-                    num(m),
                     maps::input_file::human_bytes(budget.limit_bytes)
                 ),
                 format!(
@@ -317,18 +334,8 @@ impl Starter {
             let q = crs
                 .map_from_lonlat(*p)
                 .map(|v| round_to(v, WAYPOINT_STEP_M));
-            if let Some(prev) = route_m.last()
-                && *prev == q
-            {
-                return Err(err(
-                    &track[i].at,
-                    format!(
-                        "a point apart from the one before it ({}): consecutive points at the same \
-                         millimetre are a duplicate",
-                        track[i - 1].at
-                    ),
-                    format!("{}° E {}° N, the same position", p[0], p[1]),
-                ));
+            if route_m.last() == Some(&q) {
+                return Err(duplicate(&track[i], i));
             }
             route_m.push(q);
         }
@@ -468,7 +475,7 @@ impl Starter {
             t.push('\n');
         };
         line(&format!(
-            "# solsim scenario {:?}: a traverse of your own. Route from {}.",
+            "# solsim scenario {:?}: a traverse of your own.\n# Route from {}.",
             o.name, o.source
         ));
         line("# Check it, then run every strategy on it:");
@@ -498,7 +505,7 @@ impl Starter {
         ));
         line(&format!(
             "#   orbital images, {} m wider than the route on every side;",
-            num(o.map_margin_m)
+            o.map_margin_m
         ));
         line(
             "# - the rover's speed and drive window: the public record of Perseverance's sols 379-409",
@@ -627,10 +634,11 @@ impl Starter {
         line("");
         line("[operations]");
         line(
-            "# The drive window, LMST \"HH:MM\" (default 11:00-15:00): the record's median window of",
+            "# Start of the drive window, LMST \"HH:MM\" (default 11:00-15:00): the record's median",
         );
-        line("# sols 379-409.");
+        line("# window of sols 379-409.");
         line(&format!("drive_start_lmst = {:?}", DRIVE_WINDOW_LMST.0));
+        line("# End of the drive window, LMST \"HH:MM\".");
         line(&format!("drive_end_lmst = {:?}", DRIVE_WINDOW_LMST.1));
         line("# Seconds of imaging after a drive, before its data can go down (default 1800).");
         line("post_drive_imaging_s = 1800");
