@@ -46,7 +46,7 @@ pub enum RouteCommand {
     /// Every point becomes a route waypoint, projected into map metres with the map's CRS, the
     /// Jezero equirectangular projection (true to scale at 18.4663° N; elsewhere map metres
     /// are ground metres × cos 18.4663° / cos latitude, printed) through the track's first
-    /// point — the CRS of solsim's GIS outputs, so `compare`'s <scenario>.route.geojson gives
+    /// point — the CRS of solsim's GIS outputs, so `compare`'s `gis/<scenario>.route.geojson` gives
     /// the track back within 1e-8° (waypoints are written to the millimetre).
     ///
     /// Written: SCENARIO.toml (every field commented; an AutoNav rate and drive window from
@@ -56,6 +56,10 @@ pub enum RouteCommand {
     /// nothing written: malformed GeoJSON or CSV, a NaN, a latitude beyond ±90 (±89 for the
     /// map), fewer than 2 points, two consecutive points at the same millimetre, a map over
     /// the memory budget, an existing file without --force.
+    ///
+    /// Example, then the two commands it prints next:
+    /// `solsim route import scenarios/tracks/jezero-example.geojson --out my-traverse.toml`,
+    /// `solsim validate my-traverse.toml`, `solsim compare my-traverse.toml`.
     Import(ImportArgs),
 }
 
@@ -85,7 +89,7 @@ pub struct StarterArgs {
     /// Scenario seed, and the procedural map's (default: the first sol).
     #[arg(long)]
     pub seed: Option<u64>,
-    /// Map margin around the route's bounding box on every side, metres.
+    /// Map margin around the route's bounding box on every side, metres (50 to 100000).
     #[arg(long, value_name = "M", default_value_t = study::starter::DEFAULT_MAP_MARGIN_M)]
     pub map_margin_m: f64,
     /// First sol of the computed Mars 2020 calendar (1 to 19000).
@@ -146,6 +150,13 @@ pub fn write_starter(
     out: &mut impl Write,
 ) -> anyhow::Result<()> {
     let map_dir = map_dir_of(scenario)?;
+    if !study::starter::MAP_MARGIN_RANGE_M.contains(&a.map_margin_m) {
+        bail!(
+            "--map-margin-m: expected {}, got {}",
+            study::starter::MAP_MARGIN_EXPECTED,
+            a.map_margin_m
+        );
+    }
     let name = match &a.name {
         Some(n) => {
             study::scenario::check_name(n).map_err(|e| anyhow::anyhow!("--name: expected {e}"))?;

@@ -248,6 +248,14 @@ fn bad_tracks_are_refused_naming_the_place() {
         ],
     );
     assert_bad_input(
+        &import(
+            "bad.geojson",
+            &line("[77.45, 18.44], [77.46, 18.45]"),
+            &["--map-margin-m", "10"],
+        ),
+        &["--map-margin-m: expected 50 ..= 100000 metres", "got 10"],
+    );
+    assert_bad_input(
         &import("bad.csv", "77.45,18.44\n77.46,18.45\n", &[]),
         &[
             "bad.csv: line 1: expected a header row naming a lon and a lat column",

@@ -30,6 +30,12 @@ use crate::error::ScenarioError;
 /// Default map margin around the route, metres: room for AutoNav's detours and for a
 /// route's keep-outs, as `solsim record import` leaves.
 pub const DEFAULT_MAP_MARGIN_M: f64 = 300.0;
+/// Map margins accepted, metres: AutoNav keeps `edge_buffer_m` (5 m) from the map's edge and
+/// needs room to detour around hazards at the route's ends.
+pub const MAP_MARGIN_RANGE_M: std::ops::RangeInclusive<f64> = 50.0..=100_000.0;
+/// What [`MAP_MARGIN_RANGE_M`] asks for, in words.
+pub const MAP_MARGIN_EXPECTED: &str =
+    "50 ..= 100000 metres (AutoNav keeps 5 m from the map's edge and detours around hazards)";
 /// Default first sol of the calendar: Mars 2020 sol 1100 (March 2024), a sol of no historic
 /// drive the bundled scenarios replay, so nothing is mistaken for history.
 pub const DEFAULT_FIRST_SOL: u32 = 1100;
@@ -184,11 +190,11 @@ impl Starter {
                 "1 point".into(),
             ));
         }
-        if !(0.0..=100_000.0).contains(&options.map_margin_m) {
+        if !MAP_MARGIN_RANGE_M.contains(&options.map_margin_m) {
             return Err(err(
-                "--map-margin-m",
-                "0 ..= 100000 metres".into(),
-                num(options.map_margin_m),
+                "map margin",
+                MAP_MARGIN_EXPECTED.into(),
+                options.map_margin_m.to_string(),
             ));
         }
         let duplicate = |p: &TrackPoint, i: usize| {
