@@ -313,7 +313,7 @@ pub fn parse_points(text: &str, path: &Path) -> anyhow::Result<Vec<NamedPoint>> 
 
 /// Split one CSV line into fields: commas separate; a field may be double-quoted (with `""` for a
 /// quote inside); unquoted fields are trimmed.
-fn split_fields(line: &str) -> Result<Vec<String>, &'static str> {
+pub(crate) fn split_fields(line: &str) -> Result<Vec<String>, &'static str> {
     let mut fields = Vec::new();
     let mut chars = line.chars().peekable();
     loop {

@@ -14,11 +14,14 @@
 //!   zones at each fault) in Mars longitude/latitude and in the map's projected CRS.
 //! - [`report_runs`]: `compare --runs N`, each strategy against ground over N seeded runs with
 //!   intervals (the statistics of the [`sweep`] crate).
+//! - [`cmd_init`], [`cmd_route`], [`track_file`]: starter scenarios, from a bundled example
+//!   or from your own track in Mars longitude/latitude (GeoJSON or CSV).
 //! - [`output_set`]: output directories replaced whole ([`output_set::OutputSet`]), never a
 //!   mix of two runs.
 #![warn(missing_docs)]
 
 pub mod cmd_calibrate;
+pub mod cmd_init;
 pub mod cmd_localize;
 pub mod cmd_localize_rasters;
 pub mod cmd_map;
@@ -26,6 +29,7 @@ pub mod cmd_package;
 pub mod cmd_plan;
 pub mod cmd_record;
 pub mod cmd_report;
+pub mod cmd_route;
 pub mod cmd_slip_profile;
 pub mod cmd_sweep;
 pub mod cmd_validate;
@@ -40,3 +44,4 @@ pub mod report;
 pub mod report_gis;
 pub mod report_html;
 pub mod report_runs;
+pub mod track_file;

@@ -84,6 +84,18 @@ enum Command {
     /// Run every scenario's [[expect]] entries in a directory; exit 1 and print a diff on any
     /// mismatch.
     Regress(RegressArgs),
+    /// Write a commented starter scenario that runs as written: SCENARIO.toml and, beside it,
+    /// SCENARIO.map/ (a procedural map, its recipe, zones.geojson with one example keep-out).
+    ///
+    /// The route is solsim's example track near Jezero (scenarios/tracks/jezero-example.geojson,
+    /// 1.46 km from the Perseverance landing site); every field of the file is commented with
+    /// its meaning, unit and default. `solsim route import` does the same for a track of your
+    /// own. Refuses to replace an existing file unless --force.
+    Init(solsim::cmd_init::InitArgs),
+    /// Routes from outside solsim: `route import TRACK --out SCENARIO.toml` writes a scenario
+    /// for a track in Mars longitude/latitude (GeoJSON or CSV).
+    #[command(subcommand)]
+    Route(solsim::cmd_route::RouteCommand),
     /// Check a scenario (file, maps, zones, route) without running it: list what makes no
     /// sense as errors (exit 2; every other command refuses the scenario) or warnings (exit 0),
     /// each with what to do, and print the route's passage clearance per leg.
@@ -465,6 +477,14 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
             })
         }
         Command::Validate(a) => solsim::cmd_validate::run(&a, budget, stdout),
+        Command::Init(a) => {
+            solsim::cmd_init::run(&a, budget, stdout)?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Route(c) => {
+            solsim::cmd_route::run(&c, budget, stdout)?;
+            Ok(ExitCode::SUCCESS)
+        }
         Command::Zones(ZonesCommand::Check(a)) => {
             cmd_zones::run(&a, stdout)?;
             Ok(ExitCode::SUCCESS)

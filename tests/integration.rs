@@ -71,6 +71,7 @@ mod issue_27_calendar_fields;
 mod issue_27_ground_skips_driven_sols;
 mod issue_28_honest_test_command;
 mod issue_28_keep_outs_at_the_moment;
+mod issue_28_own_traverse;
 mod issue_28_readme_figures;
 mod issue_28_report_tables_fit;
 mod issue_28_strategy_lines_distinct;

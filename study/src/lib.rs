@@ -11,6 +11,8 @@
 //! - [`science`]: a scenario's `[science]` section (targets and campaign intents).
 //! - [`campaign_file`]: the one-sol campaign files of `solsim plan` ([`CampaignFile`]).
 //! - [`recipe`]: procedural map recipes of `solsim map generate`.
+//! - [`starter`]: starter scenarios around a route in Mars longitude/latitude (`solsim init`,
+//!   `solsim route import`): the commented scenario, its zones and the map's recipe.
 //! - [`schema`]: JSON Schemas of the scenario and campaign file formats.
 //! - [`sanity`]: a scenario that is well formed field by field but nonsense as a whole (a
 //!   route in degrees, a waypoint in a keep-out, a leg closed at r = 0), as errors and warnings.
@@ -67,6 +69,7 @@ pub mod sanity;
 pub mod scenario;
 pub mod schema;
 pub mod science;
+pub mod starter;
 
 pub use campaign_file::{CampaignFile, PlanFileError};
 pub use error::ScenarioError;
