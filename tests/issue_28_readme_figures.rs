@@ -3,7 +3,8 @@
 //! replay example without today's header, note column and totals line). Two checks keep them true:
 //!
 //! - every output block in the README that starts with `$ solsim …` is what that command prints
-//!   now (run from the repository root; a `/tmp/…` path becomes a temporary directory; a line
+//!   now (run in README order in a scratch directory that links to the repository's files, so a
+//!   file one block writes is there for the next; a `/tmp/…` path becomes a temporary one; a line
 //!   with `…` stands for lines left out, and its text before the `…` must end a printed line;
 //!   durations "in 88.1 s" and "on 2 threads" are the machine's and are not compared);
 //! - every sentence that cites `solsim regress scenarios/`'s `expect[N]` quotes only intervals
@@ -14,26 +15,29 @@ use crate::common;
 
 use common::{root, solsim, stderr};
 
-/// The README's blocks that start with `$ solsim`: (line number, command line, expected text).
+/// The commands in the README's blocks that start with `$ solsim`, each `$ ` line starting the
+/// next: (line number, command line, expected text).
 fn transcripts(readme: &str) -> Vec<(usize, String, String)> {
     let lines: Vec<&str> = readme.lines().collect();
-    let mut out = Vec::new();
+    let mut out: Vec<(usize, String, String)> = Vec::new();
     let mut i = 0;
     while i < lines.len() {
         if lines[i].starts_with("```")
-            && i + 1 < lines.len()
-            && lines[i + 1].starts_with("$ solsim ")
+            && lines.get(i + 1).is_some_and(|l| l.starts_with("$ solsim "))
         {
-            let cmd = lines[i + 1]["$ ".len()..].to_string();
-            let mut body = String::new();
-            let mut j = i + 2;
+            let mut j = i + 1;
             while j < lines.len() && !lines[j].starts_with("```") {
-                body.push_str(lines[j]);
-                body.push('\n');
+                match lines[j].strip_prefix("$ ") {
+                    Some(cmd) => out.push((j + 1, cmd.to_string(), String::new())),
+                    None => {
+                        let body = &mut out.last_mut().expect("a command first").2;
+                        body.push_str(lines[j]);
+                        body.push('\n');
+                    }
+                }
                 j += 1;
             }
             assert!(j < lines.len(), "README line {}: unterminated block", i + 1);
-            out.push((i + 2, cmd, body));
             i = j;
         }
         i += 1;
@@ -95,6 +99,16 @@ fn every_solsim_block_in_the_readme_is_what_the_command_prints() {
     let readme = std::fs::read_to_string(root().join("README.md")).expect("README");
     let blocks = transcripts(&readme);
     assert!(blocks.len() >= 7, "{} blocks", blocks.len());
+    // The repository's entries, linked into a scratch directory: what a command writes lands
+    // there, not in the checkout.
+    let work = tempfile::tempdir().expect("tempdir");
+    for entry in std::fs::read_dir(root()).expect("repository") {
+        let entry = entry.expect("entry");
+        let name = entry.file_name();
+        if name != "target" && name != "solsim-out" && name != ".git" {
+            std::os::unix::fs::symlink(entry.path(), work.path().join(&name)).expect("symlink");
+        }
+    }
     for (line, cmd, expected) in blocks {
         let where_ = format!("README.md line {line}: `{cmd}`");
         assert!(
@@ -111,7 +125,7 @@ fn every_solsim_block_in_the_readme_is_what_the_command_prints() {
             })
             .collect();
         let o = solsim()
-            .current_dir(root())
+            .current_dir(work.path())
             .args(&args)
             .output()
             .expect("runs");
