@@ -6,8 +6,10 @@ use crate::common;
 
 use common::{solsim, stderr};
 
-const COMMANDS: [&str; 8] = [
+const COMMANDS: [&str; 10] = [
     "compare",
+    "init",
+    "route",
     "run",
     "sweep",
     "validate",
