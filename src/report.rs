@@ -195,20 +195,33 @@ pub fn pretty(v: &Value) -> String {
 #[must_use]
 pub fn sol_table(outcome: &CampaignOutcome) -> String {
     let mut s = format!("strategy: {}\n", outcome.strategy);
+    let faults: Vec<String> = outcome
+        .sols
+        .iter()
+        .map(|r| {
+            r.fault.as_ref().map_or(String::new(), |f| {
+                format!(
+                    "{} after {:.1} m at r={:.2} m",
+                    f.kind.name(),
+                    f.after_m,
+                    f.uncertainty_m
+                )
+            })
+        })
+        .collect();
+    // Wide enough for every fault, so the note column starts in one place.
+    let fault_w = faults
+        .iter()
+        .map(|f| f.chars().count())
+        .max()
+        .unwrap_or(0)
+        .max(28);
     let _ = writeln!(
         s,
-        "{:>5}  {:>10}  {:>11}  {:>11}  {:>11}  {:>12}  {:<28}  note",
+        "{:>5}  {:>10}  {:>11}  {:>11}  {:>11}  {:>12}  {:<fault_w$}  note",
         "sol", "distance_m", "start_r_m", "end_r_m", "d_novo_m", "passage_m", "fault"
     );
-    for r in &outcome.sols {
-        let fault = r.fault.as_ref().map_or(String::new(), |f| {
-            format!(
-                "{} after {:.1} m at r={:.2} m",
-                f.kind.name(),
-                f.after_m,
-                f.uncertainty_m
-            )
-        });
+    for (r, fault) in outcome.sols.iter().zip(faults) {
         // In the order things happened: the ground's fix with the uplink, why the sol did not
         // drive or why its drive ended, then the onboard localization after it.
         let mut note: Vec<String> = Vec::new();
@@ -251,7 +264,7 @@ pub fn sol_table(outcome: &CampaignOutcome) -> String {
         let note = note.join("; ");
         let _ = writeln!(
             s,
-            "{:>5}  {:>10.2}  {:>11.2}  {:>11.2}  {:>11.2}  {:>12}  {:<28}  {}",
+            "{:>5}  {:>10.2}  {:>11.2}  {:>11.2}  {:>11.2}  {:>12}  {:<fault_w$}  {}",
             r.sol,
             r.distance_m,
             r.start_uncertainty_m,
