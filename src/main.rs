@@ -167,7 +167,10 @@ enum Command {
     ///
     /// Both files must carry the same seed: run i of both then sees the same world (the same
     /// heading errors, VO failures, slip draws), so a difference is the setting's, not luck's.
-    /// Prints, for each figure of `solsim sweep` (drive time, sols to goal, faults, ...), the
+    /// First names every setting whose value differs between the two files, with both values
+    /// (`rover.slip_aware_routing: true → false`), read from their TOML: map files compared by
+    /// contents, not paths; name, description, notes and [[expect]] entries are not settings.
+    /// Then prints, for each figure of `solsim sweep` (drive time, sols to goal, faults, ...), the
     /// base's and the variant's mean over the runs where both have it and their difference
     /// with a 95 % bootstrap interval; then the fault and goal rates of each with 95 % Wilson
     /// intervals. Example: scenarios/dune-crossing.toml against

@@ -18,7 +18,11 @@ fn verdict(args: &[&str]) -> (String, String) {
     let out = run_ok(&all, &[]);
     let line = out.lines().nth(2).expect("a third line").to_string();
     assert!(line.starts_with("Verdict"), "third line:\n{out}");
-    assert_eq!(out.lines().nth(3), Some(""), "one line, then the table:\n{out}");
+    assert_eq!(
+        out.lines().nth(3),
+        Some(""),
+        "one line, then the table:\n{out}"
+    );
     (line, out)
 }
 
@@ -54,7 +58,10 @@ fn a_verdict_says_when_nothing_is_gained_and_names_lost_sols() {
         line.contains("onboard localization gains 1 drive sol (385) but loses 1 (386)"),
         "{line}"
     );
-    assert!(line.contains("extension gains no drive sol and drives"), "{line}");
+    assert!(
+        line.contains("extension gains no drive sol and drives"),
+        "{line}"
+    );
     // sol717-719: the same drive sols under every strategy.
     let (line, _) = verdict(&["scenarios/sol717-719.toml"]);
     for name in [
@@ -67,13 +74,18 @@ fn a_verdict_says_when_nothing_is_gained_and_names_lost_sols() {
             "{name}: {line}"
         );
     }
-    assert!(!line.contains("gains 1") && !line.contains("loses"), "{line}");
+    assert!(
+        !line.contains("gains 1") && !line.contains("loses"),
+        "{line}"
+    );
 }
 
 #[test]
 fn with_runs_the_verdict_carries_the_intervals_of_the_section_below() {
     let (line, out) = verdict(&["scenarios/sol383-386.toml", "--runs", "3"]);
-    let section = &out[out.find("Against ground over 3 runs").expect("the runs section")..];
+    let section = &out[out
+        .find("Against ground over 3 runs")
+        .expect("the runs section")..];
     for strategy in ["onboard", "extension", "extension+onboard"] {
         let block = &section[section
             .find(&format!("\n  {strategy}:\n"))

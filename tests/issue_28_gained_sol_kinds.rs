@@ -40,7 +40,8 @@ fn parse(line: &str) -> (Vec<u32>, Vec<(u32, String)>, Vec<u32>) {
             .map(|s| s.parse().unwrap_or_else(|_| panic!("{s:?} in {line}")))
             .collect()
     };
-    let gained_text = &line[line.find("; gained ").expect("gained") + 9..line.find("; lost ").expect("lost")];
+    let gained_text =
+        &line[line.find("; gained ").expect("gained") + 9..line.find("; lost ").expect("lost")];
     let (gained, kinds) = match gained_text.strip_prefix("sols ") {
         None => {
             assert_eq!(gained_text, "none", "{line}");
@@ -112,13 +113,21 @@ fn gained_sols_are_counted_once_and_lost_sols_named() {
     }
     assert!(seen_lost, "some strategy loses a sol in these scenarios");
     let lines = drive_sol_lines("scenarios/rapid-traverse-379-409.toml");
-    let onboard = &lines.iter().find(|(s, _)| s == "onboard").expect("onboard").1;
+    let onboard = &lines
+        .iter()
+        .find(|(s, _)| s == "onboard")
+        .expect("onboard")
+        .1;
     assert_eq!(
         onboard,
         "26 against 24 (+2); gained sols 403, 406 (1 no downlink pass, 1 restricted); lost none"
     );
     let lines = drive_sol_lines("scenarios/crater-floor-passage.toml");
-    let onboard = &lines.iter().find(|(s, _)| s == "onboard").expect("onboard").1;
+    let onboard = &lines
+        .iter()
+        .find(|(s, _)| s == "onboard")
+        .expect("onboard")
+        .1;
     assert!(onboard.ends_with("; lost sols 386"), "{onboard}");
 }
 

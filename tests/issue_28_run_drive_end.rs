@@ -10,7 +10,10 @@ use common::run_ok;
 
 /// The rows of `solsim run SCENARIO --strategy S`: (sol, note), and the JSON's sols.
 fn table_and_json(scenario: &str, strategy: &str) -> (Vec<(u32, String)>, serde_json::Value) {
-    let text = run_ok(&["run", scenario, "--strategy", strategy, "--no-files"], &[]);
+    let text = run_ok(
+        &["run", scenario, "--strategy", strategy, "--no-files"],
+        &[],
+    );
     let header = text.lines().nth(1).expect("header");
     let note_at = header.find("note").expect("note column");
     let rows = text
@@ -25,7 +28,14 @@ fn table_and_json(scenario: &str, strategy: &str) -> (Vec<(u32, String)>, serde_
         })
         .collect();
     let json = run_ok(
-        &["run", scenario, "--strategy", strategy, "--no-files", "--json"],
+        &[
+            "run",
+            scenario,
+            "--strategy",
+            strategy,
+            "--no-files",
+            "--json",
+        ],
         &[],
     );
     (rows, serde_json::from_str(&json).expect("JSON"))
@@ -45,7 +55,10 @@ fn notes_match_json(rows: &[(u32, String)], json: &serde_json::Value) {
         match r["drive_end"].as_str() {
             Some(end) => {
                 assert_eq!(r["drove"], true, "sol {n}");
-                assert!(note.contains(end), "sol {n}: {end:?} not in the note {note:?}");
+                assert!(
+                    note.contains(end),
+                    "sol {n}: {end:?} not in the note {note:?}"
+                );
             }
             None => {
                 assert_eq!(r["drove"], false, "sol {n} drove without a drive_end");
@@ -71,7 +84,11 @@ fn a_drive_shortened_for_a_passage_says_so_in_the_table() {
         "time limit: drive window ends at 14:40 LMST",
         "a full drive names its window"
     );
-    assert!(note(402).starts_with("ground-localized; time limit"), "{}", note(402));
+    assert!(
+        note(402).starts_with("ground-localized; time limit"),
+        "{}",
+        note(402)
+    );
 }
 
 #[test]

@@ -43,7 +43,9 @@ fn validate_and_regress_count_the_same() {
     );
     let head = &text[..text.find("\n[[expect]]").expect("an expect")];
     let one_run = |what: &str| {
-        format!("\n[[expect]]\nwhat = \"{what}\"\nstrategy = \"ground\"\nsol = 383\nfault = \"none\"\n")
+        format!(
+            "\n[[expect]]\nwhat = \"{what}\"\nstrategy = \"ground\"\nsol = 383\nfault = \"none\"\n"
+        )
     };
     let over_runs = |what: &str| {
         format!(
@@ -67,7 +69,11 @@ fn validate_and_regress_count_the_same() {
         validate.contains("4 expectations (2 on one run, 2 over runs))"),
         "{validate}"
     );
-    let o = solsim().arg("regress").arg(dir.path()).output().expect("runs");
+    let o = solsim()
+        .arg("regress")
+        .arg(dir.path())
+        .output()
+        .expect("runs");
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success(), "{out}\n{}", stderr(&o));
     assert!(out.ends_with("4 passed, 0 failed\n"), "{out}");

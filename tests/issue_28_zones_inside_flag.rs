@@ -82,7 +82,9 @@ fn the_json_flags_agree_with_the_distances() {
         kinds.insert(status.split(" (").next().unwrap_or(status).to_string());
     }
     assert!(
-        kinds.contains("clear") && kinds.contains("inside keep-out") && kinds.contains("outside keep-in"),
+        kinds.contains("clear")
+            && kinds.contains("inside keep-out")
+            && kinds.contains("outside keep-in"),
         "the fixtures cover each status: {kinds:?}"
     );
 }
