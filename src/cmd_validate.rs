@@ -18,7 +18,7 @@ pub struct ValidateArgs {
     pub scenario: PathBuf,
     /// Print JSON on standard output: `{"file", "ok", "errors", "warnings", "findings":
     /// [{"severity", "field", "expected", "got", "hint"}], "scenario": {...}, "legs": [...]}`;
-    /// `scenario.expectations` counts every [[expect]] entry, as `solsim regress` does
+    /// `scenario.expectations` counts every `[[expect]]` entry, as `solsim regress` does
     /// (`one_run_expectations` + `statistical_expectations`).
     /// A file that cannot be read or a malformed field is still one `error:` line on stderr.
     #[arg(long)]

@@ -95,8 +95,8 @@ impl std::fmt::Display for SettingDifference {
 /// notes and the `[[expect]]` entries `solsim regress` checks.
 fn is_setting(field: &str) -> bool {
     let top = field.split(['.', '[']).next().unwrap_or(field);
-    !matches!(top, "name" | "description" | "expect")
-        && !(field.starts_with("sols[") && field.ends_with("].note"))
+    let note = field.starts_with("sols[") && field.ends_with("].note");
+    !(note || matches!(top, "name" | "description" | "expect"))
 }
 
 /// Every setting whose value differs between two scenario files' TOML, in field order: the

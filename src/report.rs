@@ -563,12 +563,10 @@ pub fn verdict(
                     parts.join(", ")
                 ),
             };
-            if let Some(summary) = over_runs {
-                if let Some(runs) =
-                    crate::report_runs::verdict_over_runs(summary, o.strategy.name())
-                {
-                    clause.push_str(&format!(" — {runs}"));
-                }
+            if let Some(runs) = over_runs.and_then(|summary| {
+                crate::report_runs::verdict_over_runs(summary, o.strategy.name())
+            }) {
+                clause.push_str(&format!(" — {runs}"));
             }
             clause
         })

@@ -41,7 +41,7 @@ fn table_and_json(scenario: &str, strategy: &str) -> (Vec<(u32, String)>, serde_
     (rows, serde_json::from_str(&json).expect("JSON"))
 }
 
-fn sol<'a>(json: &'a serde_json::Value, n: u32) -> &'a serde_json::Value {
+fn sol(json: &serde_json::Value, n: u32) -> &serde_json::Value {
     json["sols"]
         .as_array()
         .and_then(|s| s.iter().find(|r| r["sol"] == n))
