@@ -10,8 +10,9 @@ Reads a zones GeoJSON FeatureCollection (Polygon / MultiPolygon features with a 
                              inf if there are no keep-ins
     max_uncertainty_m        min(the two) - footprint radius
 
-as the same fixed-width table `solsim zones check` prints (3 decimals), or with `--csv` as CSV at
-full precision (repr of each float), which is how zones_fixtures/expected_shapely.csv is made:
+as the fixed-width table `solsim zones check` prints (3 decimals; without its status column and
+the line under it), or with `--csv` as CSV at full precision (repr of each float), which is how
+zones_fixtures/expected_shapely.csv is made:
 
     python3 peers/zones_reference.py peers/zones_fixtures/zones.geojson \\
         peers/zones_fixtures/points.csv --footprint-radius-m 0.75 --csv \\

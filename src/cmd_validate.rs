@@ -17,7 +17,9 @@ pub struct ValidateArgs {
     /// Scenario file (TOML).
     pub scenario: PathBuf,
     /// Print JSON on standard output: `{"file", "ok", "errors", "warnings", "findings":
-    /// [{"severity", "field", "expected", "got", "hint"}], "scenario": {...}, "legs": [...]}`.
+    /// [{"severity", "field", "expected", "got", "hint"}], "scenario": {...}, "legs": [...]}`;
+    /// `scenario.expectations` counts every `[[expect]]` entry, as `solsim regress` does
+    /// (`one_run_expectations` + `statistical_expectations`).
     /// A file that cannot be read or a malformed field is still one `error:` line on stderr.
     #[arg(long)]
     pub json: bool,
@@ -31,7 +33,11 @@ struct Summary<'a> {
     last_sol: u32,
     waypoints: usize,
     route_m: f64,
+    /// Every `[[expect]]` entry, as `solsim regress` counts them.
     expectations: usize,
+    /// Of which checked on one run per strategy.
+    one_run_expectations: usize,
+    /// Of which checked over a sweep (`runs = N`).
     statistical_expectations: usize,
     grid_cells: [usize; 2],
     grid_resolution_m: f64,
@@ -97,7 +103,8 @@ pub fn run(
         last_sol: c.calendar.sols[c.calendar.sols.len() - 1].sol,
         waypoints: c.route.len(),
         route_m,
-        expectations: s.expectations.len(),
+        expectations: s.expectations.len() + s.statistical_expectations.len(),
+        one_run_expectations: s.expectations.len(),
         statistical_expectations: s.statistical_expectations.len(),
         grid_cells: [c.grid.width, c.grid.height],
         grid_resolution_m: c.grid.geo.resolution_m_per_px,
@@ -139,14 +146,14 @@ pub fn run(
     };
     writeln!(
         stdout,
-        "{file}: {verdict} — {} ({} sols {}..{}, {} waypoints, {:.1} m of route, {} expectations)",
+        "{file}: {verdict} — {} ({} sols {}..{}, {} waypoints, {:.1} m of route, {})",
         s.name,
         summary.sols,
         summary.first_sol,
         summary.last_sol,
         summary.waypoints,
         route_m,
-        summary.expectations
+        expectations_text(&summary)
     )?;
     writeln!(
         stdout,
@@ -198,6 +205,22 @@ pub fn run(
         }
     }
     Ok(code)
+}
+
+/// `6 expectations (2 on one run, 4 over runs)`: every `[[expect]]` entry, as `solsim
+/// regress` counts its cases.
+fn expectations_text(summary: &Summary<'_>) -> String {
+    let n = summary.expectations;
+    let mut s = format!("{n} expectation{}", plural(n));
+    if summary.one_run_expectations > 0 && summary.statistical_expectations > 0 {
+        s.push_str(&format!(
+            " ({} on one run, {} over runs)",
+            summary.one_run_expectations, summary.statistical_expectations
+        ));
+    } else if summary.statistical_expectations > 0 {
+        s.push_str(" (all over runs)");
+    }
+    s
 }
 
 fn plural(n: usize) -> &'static str {

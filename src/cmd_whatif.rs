@@ -67,6 +67,125 @@ pub struct RateComparison {
     pub variant_interval: Interval,
 }
 
+/// A setting the two scenario files give different values.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct SettingDifference {
+    /// Its TOML path: `rover.slip_aware_routing`, `sols[3].drive_window_lmst`.
+    pub field: String,
+    /// The base's value, as TOML (`None`: not set, so the default applies).
+    pub base: Option<String>,
+    /// The variant's value, as TOML (`None`: not set, so the default applies).
+    pub variant: Option<String>,
+}
+
+impl std::fmt::Display for SettingDifference {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let shown = |v: &Option<String>| v.clone().unwrap_or_else(|| "(not set: default)".into());
+        write!(
+            f,
+            "{}: {} → {}",
+            self.field,
+            shown(&self.base),
+            shown(&self.variant)
+        )
+    }
+}
+
+/// Fields of a scenario file that do not change a run: its name, its description, per-sol
+/// notes and the `[[expect]]` entries `solsim regress` checks.
+fn is_setting(field: &str) -> bool {
+    let top = field.split(['.', '[']).next().unwrap_or(field);
+    let note = field.starts_with("sols[") && field.ends_with("].note");
+    !(note || matches!(top, "name" | "description" | "expect"))
+}
+
+/// Every setting whose value differs between two scenario files' TOML, in field order: the
+/// tables flattened to dotted paths, arrays of tables indexed (`sols[3].distance_m`), other
+/// arrays compared whole. A field one file sets and the other leaves to its default is a
+/// difference (`None` on the side that does not set it). The name, the description, per-sol
+/// notes and `[[expect]]` entries are left out: they do not change a run.
+///
+/// # Errors
+/// Text that is not TOML (the scenario loader has read it already, so this is not expected).
+pub fn setting_differences(
+    base_toml: &str,
+    variant_toml: &str,
+) -> Result<Vec<SettingDifference>, toml::de::Error> {
+    fn flatten(
+        prefix: &str,
+        v: &toml::Value,
+        out: &mut std::collections::BTreeMap<String, String>,
+    ) {
+        let key = |k: &str| {
+            if prefix.is_empty() {
+                k.to_string()
+            } else {
+                format!("{prefix}.{k}")
+            }
+        };
+        match v {
+            toml::Value::Table(t) => {
+                for (k, v) in t {
+                    flatten(&key(k), v, out);
+                }
+            }
+            toml::Value::Array(a) if !a.is_empty() && a.iter().all(toml::Value::is_table) => {
+                for (i, v) in a.iter().enumerate() {
+                    flatten(&format!("{prefix}[{i}]"), v, out);
+                }
+            }
+            other => {
+                out.insert(prefix.to_string(), other.to_string());
+            }
+        }
+    }
+    let flat = |text: &str| -> Result<_, toml::de::Error> {
+        let table: toml::Table = toml::from_str(text)?;
+        let mut out = std::collections::BTreeMap::new();
+        flatten("", &toml::Value::Table(table), &mut out);
+        Ok(out)
+    };
+    let (b, v) = (flat(base_toml)?, flat(variant_toml)?);
+    let mut fields: Vec<&String> = b.keys().chain(v.keys()).collect();
+    fields.sort();
+    fields.dedup();
+    Ok(fields
+        .into_iter()
+        .filter(|f| is_setting(f) && b.get(*f) != v.get(*f))
+        .map(|f| SettingDifference {
+            field: f.clone(),
+            base: b.get(f).cloned(),
+            variant: v.get(f).cloned(),
+        })
+        .collect())
+}
+
+/// The settings that differ between the loaded `base` and `variant`, read from their files; a
+/// map file named by a different path but with the same contents (SHA-256) is not a
+/// difference.
+fn differences_of(base: &Scenario, variant: &Scenario) -> anyhow::Result<Vec<SettingDifference>> {
+    let read = |s: &Scenario| {
+        maps::input_file::read_text_file(&s.path)
+            .map_err(|e| anyhow::anyhow!("{}: cannot read it again: {e}", s.path.display()))
+    };
+    let all = setting_differences(&read(base)?, &read(variant)?).map_err(|e| {
+        anyhow::anyhow!("{} or {}: {e}", base.path.display(), variant.path.display())
+    })?;
+    let sha = |s: &Scenario, field: &str| {
+        s.inputs_sha256
+            .iter()
+            .find(|(f, _, _)| *f == field)
+            .map(|(_, _, sha)| sha.clone())
+    };
+    Ok(all
+        .into_iter()
+        .filter(|d| {
+            let same_file = sha(base, &d.field).is_some_and(|b| sha(variant, &d.field) == Some(b));
+            !same_file
+        })
+        .collect())
+}
+
 /// What `solsim whatif` prints.
 #[derive(Debug, Serialize)]
 pub struct Whatif {
@@ -74,6 +193,9 @@ pub struct Whatif {
     pub base: String,
     /// Variant scenario name.
     pub variant: String,
+    /// The settings that differ between the two files (map files compared by contents; name,
+    /// description, notes and `[[expect]]` entries left out).
+    pub differences: Vec<SettingDifference>,
     /// The strategy.
     pub strategy: &'static str,
     /// The shared seed.
@@ -120,7 +242,8 @@ pub fn run(a: &WhatifArgs, budget: MemoryBudget, stdout: &mut dyn Write) -> anyh
     progress.update(a.runs, 2 * a.runs);
     let rows_variant = sweep::engine::run_in_memory(&variant, &spec_variant, 0..a.runs);
     progress.finish();
-    let w = compare(&base, &variant, strategy, a.runs, &rows_base, &rows_variant);
+    let mut w = compare(&base, &variant, strategy, a.runs, &rows_base, &rows_variant);
+    w.differences = differences_of(&base, &variant)?;
     if a.json {
         writeln!(stdout, "{}", serde_json::to_string_pretty(&w)?)?;
     } else {
@@ -188,6 +311,7 @@ pub fn compare(
     Whatif {
         base: base.name.clone(),
         variant: variant.name.clone(),
+        differences: Vec::new(),
         strategy: strategy.name(),
         seed: base.seed(),
         runs,
@@ -205,6 +329,32 @@ pub fn table(w: &Whatif) -> String {
         "what-if: {} against {} under {}, {} runs (seed {}; run i of both sees the same world)",
         w.variant, w.base, w.strategy, w.runs, w.seed
     );
+    const LISTED: usize = 8;
+    match w.differences.as_slice() {
+        [] => {
+            let _ = writeln!(
+                s,
+                "  no setting differs: the two files set the same values (name, description, \
+                 notes and [[expect]] aside), so the runs are the same"
+            );
+        }
+        [one] => {
+            let _ = writeln!(s, "  the setting that differs: {one}");
+        }
+        many => {
+            let _ = writeln!(s, "  the {} settings that differ:", many.len());
+            for d in many.iter().take(LISTED) {
+                let _ = writeln!(s, "    {d}");
+            }
+            if many.len() > LISTED {
+                let _ = writeln!(
+                    s,
+                    "    … and {} more (`--json` lists every one)",
+                    many.len() - LISTED
+                );
+            }
+        }
+    }
     let _ = writeln!(
         s,
         "  {:<32} {:>6} {:>12} {:>12} {:>12}  95 % bootstrap",

@@ -3,8 +3,8 @@
 //! Reads a zones GeoJSON ([`maps::ZoneSet`]) and a points CSV, and prints one row per point:
 //!
 //! ```text
-//! name        x_m     y_m  keep_out_distance_m  keep_in_edge_distance_m  max_uncertainty_m
-//! L notch  130.000 140.000               15.000                   81.205             14.250
+//! name        x_m     y_m  keep_out_distance_m  keep_in_edge_distance_m  max_uncertainty_m  status
+//! L notch  130.000 140.000               15.000                   81.205             14.250  clear
 //! ```
 //!
 //! - `keep_out_distance_m`: distance to the nearest keep-out zone (0 inside one); `inf` without
@@ -13,10 +13,16 @@
 //!   outside it; `inf` without keep-ins.
 //! - `max_uncertainty_m` = min(the two) − footprint radius: the largest position error for which
 //!   the rover's footprint stays clear of every keep-out and inside the keep-in area. Negative means
-//!   it is already touching a forbidden area there.
+//!   it is already touching a forbidden area there; it is not a depth: inside a keep-out (or
+//!   outside the keep-in area) the distance is 0, so the number is minus the footprint radius
+//!   however deep the point lies.
+//! - `status`: where the point is — `clear`, `footprint touches a zone` (outside every zone, but
+//!   nearer one than the footprint radius), `inside keep-out (NAME, …)` (edges count as
+//!   inside), `outside keep-in`, or both of the last two.
 //!
-//! `--json` prints the same as an array of objects with those keys (infinite values as `null`,
-//! full precision). `peers/zones_reference.py` prints the same table computed with shapely.
+//! Under the table one line says the sign convention. `--json` prints an array of objects with
+//! those keys (infinite values as `null`, full precision) and the flags `inside_keep_out` and
+//! `outside_keep_in`. `peers/zones_reference.py` prints the same numbers computed with shapely.
 
 use anyhow::{Context, anyhow, bail};
 use maps::ZoneSet;
@@ -27,8 +33,16 @@ use std::path::{Path, PathBuf};
 use study::error::{MAX_EXCERPT_CHARS, excerpt, readable_value};
 
 /// Check points against a map's zones: distance to the nearest keep-out zone, distance to the
-/// edge of the keep-in area, and the largest position uncertainty each point tolerates
-/// (max_uncertainty_m = min of the two distances − footprint radius; negative = already closed).
+/// edge of the keep-in area, the largest position uncertainty each point tolerates, and where
+/// the point is.
+///
+/// max_uncertainty_m = min of the two distances − footprint radius. Negative means the point is
+/// not drivable at any uncertainty; it is not a depth: inside a keep-out (or outside the keep-in
+/// area) the distance is 0, so the number is minus the footprint radius however deep the point
+/// lies. The status column says where the point is: clear, footprint touches a zone (outside
+/// every zone but nearer one than the footprint radius), inside keep-out (NAME, …; edges count
+/// as inside), outside keep-in. --json gives the same with the flags inside_keep_out and
+/// outside_keep_in.
 #[derive(Debug, Clone, clap::Args)]
 pub struct ZonesCheckArgs {
     /// Zones file: a GeoJSON FeatureCollection of Polygon/MultiPolygon features in map metres,
@@ -74,13 +88,28 @@ pub fn run(args: &ZonesCheckArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let rows: Vec<Row<'_>> = points
         .iter()
         .zip(&clearances)
-        .map(|(p, c)| Row {
-            name: &p.name,
-            x_m: p.xy[0],
-            y_m: p.xy[1],
-            keep_out_distance_m: c.keep_out_distance_m,
-            keep_in_edge_distance_m: c.keep_in_edge_distance_m,
-            max_uncertainty_m: c.max_uncertainty_m,
+        .map(|(p, c)| {
+            // The zone names only for a point inside one: the index answers the question
+            // for every other point.
+            let keep_outs: Vec<String> = if zones.in_keep_out(p.xy) {
+                zones
+                    .keep_outs()
+                    .filter(|(_, z)| z.covers(p.xy))
+                    .map(|(_, z)| z.name().to_string())
+                    .collect()
+            } else {
+                Vec::new()
+            };
+            Row {
+                name: &p.name,
+                x_m: p.xy[0],
+                y_m: p.xy[1],
+                keep_out_distance_m: c.keep_out_distance_m,
+                keep_in_edge_distance_m: c.keep_in_edge_distance_m,
+                max_uncertainty_m: c.max_uncertainty_m,
+                inside_keep_outs: keep_outs,
+                outside_keep_in: !zones.in_keep_in(p.xy),
+            }
         })
         .collect();
     match if args.json {
@@ -95,14 +124,21 @@ pub fn run(args: &ZonesCheckArgs, out: &mut dyn Write) -> anyhow::Result<()> {
 }
 
 /// Column names, in output order.
-const COLUMNS: [&str; 6] = [
+const COLUMNS: [&str; 7] = [
     "name",
     "x_m",
     "y_m",
     "keep_out_distance_m",
     "keep_in_edge_distance_m",
     "max_uncertainty_m",
+    "status",
 ];
+
+/// The line under the table: what the sign of `max_uncertainty_m` means.
+const SIGN_CONVENTION: &str = "max_uncertainty_m = min(keep_out_distance_m, \
+     keep_in_edge_distance_m) − footprint radius: the largest position error at which the point \
+     stays drivable; negative = not drivable at any error, and not a depth (inside a zone the \
+     distance is 0, so it is minus the footprint radius): status says where the point is";
 
 /// One output row.
 struct Row<'a> {
@@ -112,9 +148,35 @@ struct Row<'a> {
     keep_out_distance_m: f64,
     keep_in_edge_distance_m: f64,
     max_uncertainty_m: f64,
+    /// The keep-out zones the point lies in (edges included), by name; empty when outside.
+    inside_keep_outs: Vec<String>,
+    /// The point lies outside the keep-in area (never, without keep-in zones).
+    outside_keep_in: bool,
 }
 
 impl Row<'_> {
+    /// Where the point is: `clear`, `footprint touches a zone`, `inside keep-out (NAME, …)`,
+    /// `outside keep-in`, or both of the last two.
+    fn status(&self) -> String {
+        let mut parts = Vec::new();
+        if !self.inside_keep_outs.is_empty() {
+            parts.push(format!(
+                "inside keep-out ({})",
+                self.inside_keep_outs.join(", ")
+            ));
+        }
+        if self.outside_keep_in {
+            parts.push("outside keep-in".to_string());
+        }
+        if !parts.is_empty() {
+            parts.join(", ")
+        } else if self.max_uncertainty_m < 0.0 {
+            "footprint touches a zone".into()
+        } else {
+            "clear".into()
+        }
+    }
+
     fn numbers(&self) -> [f64; 5] {
         [
             self.x_m,
@@ -129,7 +191,7 @@ impl Row<'_> {
 /// Fixed-width table: names left-aligned, numbers right-aligned with 3 decimals (`inf` when
 /// there are no zones of that kind), columns separated by two spaces.
 fn write_table(rows: &[Row<'_>], out: &mut dyn Write) -> std::io::Result<()> {
-    let cells: Vec<[String; 6]> = rows
+    let cells: Vec<[String; 7]> = rows
         .iter()
         .map(|r| {
             let n = r.numbers().map(|v| format!("{v:.3}"));
@@ -141,6 +203,7 @@ fn write_table(rows: &[Row<'_>], out: &mut dyn Write) -> std::io::Result<()> {
                 n[2].clone(),
                 n[3].clone(),
                 n[4].clone(),
+                printable(&r.status()).into_owned(),
             ]
         })
         .collect();
@@ -150,17 +213,20 @@ fn write_table(rows: &[Row<'_>], out: &mut dyn Write) -> std::io::Result<()> {
             *w = (*w).max(cell.chars().count());
         }
     }
-    let line = |values: [&str; 6]| -> String {
+    let line = |values: [&str; 7]| -> String {
         let mut s = format!("{:<w$}", values[0], w = widths[0]);
-        for (value, w) in values.iter().zip(widths).skip(1) {
+        for (value, w) in values.iter().zip(widths).skip(1).take(5) {
             s.push_str(&format!("  {value:>w$}"));
         }
+        // The status is text, the last column: left-aligned, no padding after it.
+        s.push_str(&format!("  {}", values[6]));
         s
     };
     writeln!(out, "{}", line(COLUMNS))?;
     for row in &cells {
         writeln!(out, "{}", line(row.each_ref().map(String::as_str)))?;
     }
+    writeln!(out, "{SIGN_CONVENTION}")?;
     Ok(())
 }
 
@@ -175,6 +241,9 @@ fn write_json(rows: &[Row<'_>], out: &mut dyn Write) -> std::io::Result<()> {
         keep_out_distance_m: Option<f64>,
         keep_in_edge_distance_m: Option<f64>,
         max_uncertainty_m: Option<f64>,
+        status: String,
+        inside_keep_out: bool,
+        outside_keep_in: bool,
     }
     let finite = |v: f64| v.is_finite().then_some(v);
     let array: Vec<JsonRow<'_>> = rows
@@ -186,6 +255,9 @@ fn write_json(rows: &[Row<'_>], out: &mut dyn Write) -> std::io::Result<()> {
             keep_out_distance_m: finite(r.keep_out_distance_m),
             keep_in_edge_distance_m: finite(r.keep_in_edge_distance_m),
             max_uncertainty_m: finite(r.max_uncertainty_m),
+            status: r.status(),
+            inside_keep_out: !r.inside_keep_outs.is_empty(),
+            outside_keep_in: r.outside_keep_in,
         })
         .collect();
     serde_json::to_writer_pretty(&mut *out, &array)?;
@@ -405,20 +477,38 @@ mod tests {
 
     #[test]
     fn table_and_json() {
-        let rows = [Row {
-            name: "p",
-            x_m: 1.0,
-            y_m: -2.5,
-            keep_out_distance_m: f64::INFINITY,
-            keep_in_edge_distance_m: 3.25,
-            max_uncertainty_m: 3.0,
-        }];
+        let rows = [
+            Row {
+                name: "p",
+                x_m: 1.0,
+                y_m: -2.5,
+                keep_out_distance_m: f64::INFINITY,
+                keep_in_edge_distance_m: 3.25,
+                max_uncertainty_m: 3.0,
+                inside_keep_outs: Vec::new(),
+                outside_keep_in: false,
+            },
+            Row {
+                name: "q",
+                x_m: 4.0,
+                y_m: 5.0,
+                keep_out_distance_m: 0.0,
+                keep_in_edge_distance_m: 0.0,
+                max_uncertainty_m: -1.65,
+                inside_keep_outs: vec!["rock".into()],
+                outside_keep_in: true,
+            },
+        ];
         let mut out = Vec::new();
         write_table(&rows, &mut out).expect("write");
         assert_eq!(
             String::from_utf8_lossy(&out),
-            "name    x_m     y_m  keep_out_distance_m  keep_in_edge_distance_m  max_uncertainty_m\n\
-             p     1.000  -2.500                  inf                    3.250              3.000\n"
+            format!(
+                "name    x_m     y_m  keep_out_distance_m  keep_in_edge_distance_m  max_uncertainty_m  status\n\
+                 p     1.000  -2.500                  inf                    3.250              3.000  clear\n\
+                 q     4.000   5.000                0.000                    0.000             -1.650  inside keep-out (rock), outside keep-in\n\
+                 {SIGN_CONVENTION}\n"
+            )
         );
         let mut out = Vec::new();
         write_json(&rows, &mut out).expect("write");
@@ -435,5 +525,9 @@ mod tests {
         assert_eq!(v[0]["keep_out_distance_m"], serde_json::Value::Null);
         assert_eq!(v[0]["keep_in_edge_distance_m"], 3.25);
         assert_eq!(v[0]["name"], "p");
+        assert_eq!(v[0]["status"], "clear");
+        assert_eq!(v[0]["inside_keep_out"], false);
+        assert_eq!(v[1]["inside_keep_out"], true);
+        assert_eq!(v[1]["outside_keep_in"], true);
     }
 }

@@ -44,11 +44,18 @@ struct Cli {
 enum Command {
     /// Run a scenario under every strategy and print them side by side (the main job).
     ///
+    /// First a one-line verdict: what onboard localization, extension and the two together
+    /// gain or lose against ground on the scenario's seed — drive sols by number, metres, the
+    /// study segment's sols, a change in faults — and with --runs N the mean differences over
+    /// the N runs with their 95 % intervals.
+    ///
     /// Columns: sols to reach the end of the route, drive sols, metres driven, metres per drive
     /// sol, NO_PATH faults, all faults, largest uncertainty radius, onboard localizations
     /// applied/rejected, ground localizations. Under the table, each strategy against ground on
-    /// the same seed. Per-strategy JSON, CSV and GeoJSON files go to --out (default
-    /// solsim-out/<scenario name>/).
+    /// the same seed: the drive sols it gained and lost, by number. Each gained sol is counted
+    /// once, under the first kind that applies: no downlink pass, restricted, no uplink (weekend
+    /// or multi-sol plan), ordinary sol. Per-strategy JSON, CSV and GeoJSON files go to --out
+    /// (default solsim-out/<scenario name>/).
     ///
     /// With --runs N the scenario also runs over N seeded worlds (run indices 0..N; run 0 is
     /// the scenario's seed, the run of the table), in memory: the same sweep as `solsim sweep
@@ -78,6 +85,12 @@ enum Command {
     /// `compare --report` writes the same page beside the run's files.
     Report(solsim::cmd_report::ReportArgs),
     /// Run a scenario under one strategy and print the sol-by-sol table (or JSON).
+    ///
+    /// The note column says why each drive ended — reached goal, fault: NO_PATH (or KEEP_OUT,
+    /// KEEP_IN, SLIP), shortened for passage (the planners' predicted uncertainty would close
+    /// the passage ahead), time limit (the drive window, or stopped so the panorama makes the
+    /// afternoon pass), drove the record's distance — or why a sol did not drive, and the
+    /// localizations. The JSON's sols[].drive_end holds the same words.
     Run(RunArgs),
     /// Replay the historic record of a scenario (same as `run --strategy replay`).
     Replay(ReplayArgs),
@@ -166,7 +179,10 @@ enum Command {
     ///
     /// Both files must carry the same seed: run i of both then sees the same world (the same
     /// heading errors, VO failures, slip draws), so a difference is the setting's, not luck's.
-    /// Prints, for each figure of `solsim sweep` (drive time, sols to goal, faults, ...), the
+    /// First names every setting whose value differs between the two files, with both values
+    /// (`rover.slip_aware_routing: true → false`), read from their TOML: map files compared by
+    /// contents, not paths; name, description, notes and [[expect]] entries are not settings.
+    /// Then prints, for each figure of `solsim sweep` (drive time, sols to goal, faults, ...), the
     /// base's and the variant's mean over the runs where both have it and their difference
     /// with a 95 % bootstrap interval; then the fault and goal rates of each with 95 % Wilson
     /// intervals. Example: scenarios/dune-crossing.toml against
@@ -315,6 +331,11 @@ struct RegressArgs {
     /// "seconds"}]}`. The exit code is the same (1 on a mismatch).
     #[arg(long)]
     json: bool,
+    /// No progress on standard error. Without it, a terminal shows a bar over every [[expect]]
+    /// entry with the scenario and stage beside it; a piped or redirected standard error shows
+    /// nothing either way.
+    #[arg(long, short)]
+    quiet: bool,
 }
 
 fn main() -> ExitCode {
@@ -455,10 +476,32 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
             if files.is_empty() {
                 anyhow::bail!("{}: no scenario files (*.toml) found", a.dir.display());
             }
+            // Progress over every [[expect]] entry, the scenario and stage beside the bar.
+            let total: usize = files.iter().map(|f| regress::count_expectations(f)).sum();
+            let progress =
+                solsim::progress::Progress::new(a.quiet, "regress", "checks", total as u64);
             let mut results = Vec::new();
             for f in &files {
-                results.extend(regress::check_scenario(f, budget)?);
+                let file = f.display().to_string();
+                let observed = regress::check_scenario_observed(f, budget, &|stage| match stage {
+                    regress::Stage::Loading => progress.set_message(format!("{file}: loading")),
+                    regress::Stage::OneRun { name, checks } if checks > 0 => progress
+                        .set_message(format!("{name}: {checks} checks on one run per strategy")),
+                    regress::Stage::OverRuns { name, checks } if checks > 0 => {
+                        progress.set_message(format!("{name}: {checks} checks over runs (sweeps)"));
+                    }
+                    regress::Stage::Checked(n) => progress.inc_by(n as u64),
+                    _ => {}
+                });
+                match observed {
+                    Ok(cases) => results.extend(cases),
+                    Err(e) => {
+                        progress.finish();
+                        return Err(e.into());
+                    }
+                }
             }
+            progress.finish();
             if a.json {
                 writeln!(stdout, "{}", regress::json_report(&results))?;
             } else {
@@ -647,6 +690,11 @@ fn compare(
             "{} — {}\n",
             scenario.name,
             scenario.description.trim()
+        )?;
+        writeln!(
+            stdout,
+            "{}",
+            report::verdict(&scenario, &outcomes, summary.as_ref())
         )?;
         write!(stdout, "{}", report::compare_table(&outcomes))?;
         write!(stdout, "{}", report::against_ground(&scenario, &outcomes))?;

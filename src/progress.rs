@@ -1,7 +1,7 @@
 //! Progress on standard error for the commands that can run for more than a couple of
-//! seconds (`sweep`, `compare --runs`, `localize-bench`, `seu-campaign`, `map package`,
-//! `map generate`, and loading a scenario in `validate`, `run` and `compare`, whose passage
-//! search runs leg by leg): a bar when standard error is a terminal, nothing when it is piped
+//! seconds (`sweep`, `compare --runs`, `regress`, `localize-bench`, `seu-campaign`,
+//! `map package`, `map generate`, and loading a scenario in `validate`, `run` and `compare`,
+//! whose passage search runs leg by leg): a bar when standard error is a terminal, nothing when it is piped
 //! or redirected, so logs and captured output hold only results.
 
 use std::io::IsTerminal as _;
@@ -19,8 +19,9 @@ impl Progress {
     pub fn new(quiet: bool, label: &str, unit: &str, total: u64) -> Self {
         let bar = (!quiet && std::io::stderr().is_terminal()).then(|| {
             let bar = indicatif::ProgressBar::new(total);
-            let template =
-                format!("{label} {{bar:40}} {{pos}}/{{len}} {unit}  {{per_sec}}  ETA {{eta}}");
+            let template = format!(
+                "{label} {{bar:40}} {{pos}}/{{len}} {unit}  {{per_sec}}  ETA {{eta}}  {{wide_msg}}"
+            );
             bar.set_style(
                 indicatif::ProgressStyle::with_template(&template)
                     .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
@@ -40,8 +41,21 @@ impl Progress {
 
     /// One more finished.
     pub fn inc(&self) {
+        self.inc_by(1);
+    }
+
+    /// `n` more finished.
+    pub fn inc_by(&self, n: u64) {
         if let Some(bar) = &self.bar {
-            bar.inc(1);
+            bar.inc(n);
+        }
+    }
+
+    /// What is being done now, shown after the bar (`rapid-traverse-379-409: 6 checks over
+    /// runs`).
+    pub fn set_message(&self, message: String) {
+        if let Some(bar) = &self.bar {
+            bar.set_message(message);
         }
     }
 

@@ -27,6 +27,46 @@ pub struct CaseResult {
     pub seconds: f64,
 }
 
+/// What [`check_scenario_observed`] is doing, for a progress display.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stage<'a> {
+    /// Loading the scenario file (maps, zones, the passage search).
+    Loading,
+    /// Running each strategy the checks of one run need, once, for this many checks of the
+    /// scenario `name`.
+    OneRun {
+        /// The scenario's name.
+        name: &'a str,
+        /// Checks of one run.
+        checks: usize,
+    },
+    /// Sweeping what this many checks over runs need.
+    OverRuns {
+        /// The scenario's name.
+        name: &'a str,
+        /// Checks over runs.
+        checks: usize,
+    },
+    /// This many more checks are done.
+    Checked(usize),
+}
+
+/// How many `[[expect]]` entries the scenario file at `path` holds, read from its TOML without
+/// loading it (0 for a file that is not a regular text file of TOML: loading it reports why): the total of
+/// `solsim regress`'s progress.
+#[must_use]
+pub fn count_expectations(path: &Path) -> usize {
+    maps::input_file::read_text_file(path)
+        .ok()
+        .and_then(|text| toml::from_str::<toml::Table>(&text).ok())
+        .and_then(|t| {
+            t.get("expect")
+                .and_then(toml::Value::as_array)
+                .map(Vec::len)
+        })
+        .unwrap_or(0)
+}
+
 /// Check one scenario: load it, run what its expectations need, check each one.
 ///
 /// # Errors
@@ -35,9 +75,28 @@ pub fn check_scenario(
     path: &Path,
     budget: maps::MemoryBudget,
 ) -> Result<Vec<CaseResult>, ScenarioError> {
+    check_scenario_observed(path, budget, &|_| {})
+}
+
+/// [`check_scenario`], telling `observe` each [`Stage`] as it begins and the checks as they
+/// are done.
+///
+/// # Errors
+/// The [`ScenarioError`] of a scenario that cannot be loaded.
+pub fn check_scenario_observed(
+    path: &Path,
+    budget: maps::MemoryBudget,
+    observe: &dyn Fn(Stage<'_>),
+) -> Result<Vec<CaseResult>, ScenarioError> {
     let start = std::time::Instant::now();
+    observe(Stage::Loading);
     let scenario = Scenario::load_within(path, budget)?;
+    observe(Stage::OneRun {
+        name: &scenario.name,
+        checks: scenario.expectations.len(),
+    });
     let checked = scenario.check_expectations();
+    observe(Stage::Checked(scenario.expectations.len()));
     let one_run_s = start.elapsed().as_secs_f64() / scenario.expectations.len().max(1) as f64;
     let mut results: Vec<(usize, CaseResult)> = scenario
         .expectations
@@ -55,7 +114,12 @@ pub fn check_scenario(
             (e.index, case)
         })
         .collect();
+    observe(Stage::OverRuns {
+        name: &scenario.name,
+        checks: scenario.statistical_expectations.len(),
+    });
     let swept = sweep::expect::check_statistical(&scenario);
+    observe(Stage::Checked(scenario.statistical_expectations.len()));
     results.extend(
         scenario
             .statistical_expectations

@@ -195,26 +195,44 @@ pub fn pretty(v: &Value) -> String {
 #[must_use]
 pub fn sol_table(outcome: &CampaignOutcome) -> String {
     let mut s = format!("strategy: {}\n", outcome.strategy);
+    let faults: Vec<String> = outcome
+        .sols
+        .iter()
+        .map(|r| {
+            r.fault.as_ref().map_or(String::new(), |f| {
+                format!(
+                    "{} after {:.1} m at r={:.2} m",
+                    f.kind.name(),
+                    f.after_m,
+                    f.uncertainty_m
+                )
+            })
+        })
+        .collect();
+    // Wide enough for every fault, so the note column starts in one place.
+    let fault_w = faults
+        .iter()
+        .map(|f| f.chars().count())
+        .max()
+        .unwrap_or(0)
+        .max(28);
     let _ = writeln!(
         s,
-        "{:>5}  {:>10}  {:>11}  {:>11}  {:>11}  {:>12}  {:<28}  note",
+        "{:>5}  {:>10}  {:>11}  {:>11}  {:>11}  {:>12}  {:<fault_w$}  note",
         "sol", "distance_m", "start_r_m", "end_r_m", "d_novo_m", "passage_m", "fault"
     );
-    for r in &outcome.sols {
-        let fault = r.fault.as_ref().map_or(String::new(), |f| {
-            format!(
-                "{} after {:.1} m at r={:.2} m",
-                f.kind.name(),
-                f.after_m,
-                f.uncertainty_m
-            )
-        });
-        let mut note = r
-            .skip_reason
-            .map(|why| format!("skipped: {why}"))
-            .unwrap_or_default();
+    for (r, fault) in outcome.sols.iter().zip(faults) {
+        // In the order things happened: the ground's fix with the uplink, why the sol did not
+        // drive or why its drive ended, then the onboard localization after it.
+        let mut note: Vec<String> = Vec::new();
         if r.ground_localization.is_some() {
-            note = format!("ground-localized; {note}");
+            note.push("ground-localized".into());
+        }
+        if let Some(why) = r.skip_reason {
+            note.push(format!("skipped: {why}"));
+        }
+        if let Some(end) = r.drive_end {
+            note.push(end.to_string());
         }
         if let Some(l) = &r.onboard_localization {
             let when = match (&l.start_lmst, l.duration_s) {
@@ -227,7 +245,7 @@ pub fn sol_table(outcome: &CampaignOutcome) -> String {
                     e.semi_major_m, e.semi_minor_m, e.azimuth_deg
                 )
             });
-            note.push_str(&if l.applied {
+            note.push(if l.applied {
                 format!(
                     "onboard loc ({}{when}{ellipse}) → r={:.2} m",
                     l.localizer, l.uncertainty_after_m
@@ -243,12 +261,10 @@ pub fn sol_table(outcome: &CampaignOutcome) -> String {
                 )
             });
         }
-        if r.reached_goal {
-            note.push_str(" goal reached");
-        }
+        let note = note.join("; ");
         let _ = writeln!(
             s,
-            "{:>5}  {:>10.2}  {:>11.2}  {:>11.2}  {:>11.2}  {:>12}  {:<28}  {}",
+            "{:>5}  {:>10.2}  {:>11.2}  {:>11.2}  {:>11.2}  {:>12}  {:<fault_w$}  {}",
             r.sol,
             r.distance_m,
             r.start_uncertainty_m,
@@ -257,7 +273,7 @@ pub fn sol_table(outcome: &CampaignOutcome) -> String {
             r.passage_clearance_m
                 .map_or("-".into(), |c| format!("{c:.2}")),
             fault,
-            note.trim()
+            note
         );
     }
     let t = &outcome.totals;
@@ -367,23 +383,238 @@ fn science_table(outcomes: &[CampaignOutcome], s: &mut String) {
     }
 }
 
-/// What kind of sol a drive was gained on: the calendar's reasons the ground could not use it.
-pub(crate) fn sol_kinds(entry: &sim::SolEntry) -> Vec<&'static str> {
-    let mut k = Vec::new();
-    if entry.restricted {
-        k.push("restricted");
-    }
-    if !entry.uplink {
-        k.push("no uplink (weekend or multi-sol plan)");
-    }
+/// The kinds of sol a gained drive can fall on, in the order a gained sol is counted by: the
+/// first that applies. Each is a reason the ground-in-the-loop practice cannot use the sol; a
+/// sol with none of them is an `ordinary sol` (the ground skipped it by its own rules).
+pub const GAINED_SOL_KINDS: [&str; 4] = [
+    "no downlink pass",
+    "restricted",
+    "no uplink (weekend or multi-sol plan)",
+    "ordinary sol",
+];
+
+/// The kind a gained drive sol is counted under: the first of [`GAINED_SOL_KINDS`] that
+/// applies to its calendar entry.
+fn gained_sol_kind(entry: &sim::SolEntry) -> &'static str {
     if !entry.downlink {
-        k.push("no downlink pass");
+        GAINED_SOL_KINDS[0]
+    } else if entry.restricted {
+        GAINED_SOL_KINDS[1]
+    } else if !entry.uplink {
+        GAINED_SOL_KINDS[2]
+    } else {
+        GAINED_SOL_KINDS[3]
     }
-    k
+}
+
+/// "1 no downlink pass", "1 restricted", …: the gained sols counted once each, by their first
+/// kind ([`GAINED_SOL_KINDS`] order), kinds with none left out.
+pub(crate) fn gained_kind_counts(gained: &[u32], cal: &sim::Calendar) -> Vec<String> {
+    GAINED_SOL_KINDS
+        .iter()
+        .filter_map(|kind| {
+            let n = gained
+                .iter()
+                .filter(|sol| {
+                    cal.sols
+                        .iter()
+                        .find(|e| e.sol == **sol)
+                        .is_some_and(|e| gained_sol_kind(e) == *kind)
+                })
+                .count();
+            (n > 0).then(|| format!("{n} {kind}"))
+        })
+        .collect()
+}
+
+/// Sols `o` drove that `base` did not (gained), and sols `base` drove that `o` did not (lost).
+pub(crate) fn gained_lost(o: &CampaignOutcome, base: &CampaignOutcome) -> (Vec<u32>, Vec<u32>) {
+    let drove = |o: &CampaignOutcome| -> Vec<u32> {
+        o.sols.iter().filter(|r| r.drove).map(|r| r.sol).collect()
+    };
+    let (mine, theirs) = (drove(o), drove(base));
+    let gained = mine
+        .iter()
+        .copied()
+        .filter(|d| !theirs.contains(d))
+        .collect();
+    let lost = theirs
+        .iter()
+        .copied()
+        .filter(|d| !mine.contains(d))
+        .collect();
+    (gained, lost)
+}
+
+/// `403, 406`.
+pub(crate) fn sol_list(sols: &[u32]) -> String {
+    sols.iter()
+        .map(u32::to_string)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// `403, 406, 410-415`: runs of consecutive sols as ranges.
+fn sol_ranges(sols: &[u32]) -> String {
+    let mut runs: Vec<(u32, u32)> = Vec::new();
+    for &sol in sols {
+        match runs.last_mut() {
+            Some((_, end)) if *end + 1 == sol => *end = sol,
+            _ => runs.push((sol, sol)),
+        }
+    }
+    runs.iter()
+        .map(|&(a, b)| match b - a {
+            0 => a.to_string(),
+            1 => format!("{a}, {b}"),
+            _ => format!("{a}-{b}"),
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// `1 sol` / `2 sols`, with `noun` for the word.
+fn count(n: usize, noun: &str) -> String {
+    format!("{n} {noun}{}", if n == 1 { "" } else { "s" })
+}
+
+/// The plain-words name of a strategy in the verdict.
+fn plain_name(strategy: sim::Strategy) -> &'static str {
+    match strategy {
+        sim::Strategy::Onboard => "onboard localization",
+        sim::Strategy::Extension => "extension",
+        sim::Strategy::ExtensionOnboard => "extension with onboard localization",
+        sim::Strategy::Ground => "ground",
+        sim::Strategy::Replay => "the replay",
+    }
+}
+
+/// The verdict line at the top of `solsim compare`: what onboard localization and extension
+/// (and the two together) buy over `ground` on this scenario's seed — drive sols gained or lost,
+/// by number, metres, the study segment's sols, and any change in faults — and, with `over_runs`
+/// (`--runs N`), the mean paired differences over the N runs with their 95 % bootstrap
+/// intervals. One line, ending in a newline.
+#[must_use]
+pub fn verdict(
+    scenario: &Scenario,
+    outcomes: &[CampaignOutcome],
+    over_runs: Option<&sweep::engine::Summary>,
+) -> String {
+    let Some(base) = outcomes
+        .iter()
+        .find(|o| o.strategy == sim::Strategy::Ground)
+    else {
+        return "Verdict: none — ground, the practice the strategies are measured against, is not \
+                among this scenario's strategies.\n"
+            .into();
+    };
+    let cal = &scenario.campaign.calendar;
+    let clauses: Vec<String> = outcomes
+        .iter()
+        .filter(|o| {
+            matches!(
+                o.strategy,
+                sim::Strategy::Onboard | sim::Strategy::Extension | sim::Strategy::ExtensionOnboard
+            )
+        })
+        .map(|o| {
+            let (gained, lost) = gained_lost(o, base);
+            let d_m = o.totals.distance_m - base.totals.distance_m;
+            // "gains 2 drive sols (403, 406) and 416 m", "loses 1 drive sol (405) and 120 m";
+            // metres that go the other way, or with no sol or both ways, are said on their own.
+            let one_way = gained.is_empty() != lost.is_empty();
+            let along = one_way && (d_m > 0.0) == lost.is_empty() && d_m.abs() >= 0.5;
+            let mut parts = vec![match (gained.len(), lost.len()) {
+                (0, 0) => "gains no drive sol".to_string(),
+                (g, 0) => format!("gains {} ({})", count(g, "drive sol"), sol_ranges(&gained)),
+                (0, l) => format!("loses {} ({})", count(l, "drive sol"), sol_ranges(&lost)),
+                (g, l) => format!(
+                    "gains {} ({}) but loses {} ({})",
+                    count(g, "drive sol"),
+                    sol_ranges(&gained),
+                    l,
+                    sol_ranges(&lost)
+                ),
+            }];
+            if along {
+                parts[0].push_str(&format!(" and {:.0} m", d_m.abs()));
+            } else if d_m.abs() < 0.5 {
+                parts.push("drives the same metres".into());
+            } else if d_m > 0.0 {
+                parts.push(format!("drives {d_m:.0} m more"));
+            } else {
+                parts.push(format!("drives {:.0} m less", -d_m));
+            }
+            if let Some(g) = scenario.study_segment {
+                let mine = o.sols_to_cover(g.from_sol, g.distance_m);
+                let theirs = base.sols_to_cover(g.from_sol, g.distance_m);
+                let left = cal.sols_from(g.from_sol);
+                parts.push(match (mine, theirs) {
+                    (Some(m), Some(b)) if m < b => format!(
+                        "covers the study segment {} sooner (in {m} sols)",
+                        count((b - m) as usize, "sol")
+                    ),
+                    (Some(m), Some(b)) if m > b => format!(
+                        "covers the study segment {} later (in {m} sols)",
+                        count((m - b) as usize, "sol")
+                    ),
+                    (Some(m), Some(_)) => format!("covers the study segment in the same {m} sols"),
+                    (Some(m), None) => format!(
+                        "covers the study segment at least {} sooner (in {m} sols)",
+                        count((left + 1).saturating_sub(m) as usize, "sol")
+                    ),
+                    (None, _) => "does not cover the study segment within the calendar".into(),
+                });
+            }
+            let (f, bf) = (o.totals.faults, base.totals.faults);
+            if f != bf {
+                parts.push(format!(
+                    "meets {} against ground's {bf}",
+                    count(f as usize, "fault")
+                ));
+            }
+            let last = parts.pop().unwrap_or_default();
+            let mut clause = match parts.len() {
+                0 => format!("{} {last}", plain_name(o.strategy)),
+                1 => format!("{} {} and {last}", plain_name(o.strategy), parts[0]),
+                _ => format!(
+                    "{} {}, and {last}",
+                    plain_name(o.strategy),
+                    parts.join(", ")
+                ),
+            };
+            if let Some(runs) = over_runs.and_then(|summary| {
+                crate::report_runs::verdict_over_runs(summary, o.strategy.name())
+            }) {
+                clause.push_str(&format!(" — {runs}"));
+            }
+            clause
+        })
+        .collect();
+    if clauses.is_empty() {
+        return "Verdict: none — neither onboard localization nor extension is among this \
+                scenario's strategies.\n"
+            .into();
+    }
+    // Ground's own sols for the study segment, once, after the clauses that compare with it.
+    let ground_segment = scenario.study_segment.map_or(String::new(), |g| {
+        match base.sols_to_cover(g.from_sol, g.distance_m) {
+            Some(b) => format!("; ground covers the study segment in {b} sols"),
+            None => format!(
+                "; ground does not cover the study segment within the {} sols left",
+                cal.sols_from(g.from_sol)
+            ),
+        }
+    });
+    format!(
+        "Verdict against ground (same seed and calendar): {}{ground_segment}.\n",
+        clauses.join("; ")
+    )
 }
 
 /// Under the compare table: each strategy against `ground` on the same seed and calendar —
-/// sols to cover the study segment, drive sols gained and on which kind of sol, metres,
+/// sols to cover the study segment, drive sols gained (each counted once, under the first of
+/// [`GAINED_SOL_KINDS`] that applies) and lost, by number, metres,
 /// faults avoided, peak uncertainty, uplinks that needed a drive plan, drive time. Empty when
 /// `ground` is not among the outcomes.
 #[must_use]
@@ -395,9 +626,6 @@ pub fn against_ground(scenario: &Scenario, outcomes: &[CampaignOutcome]) -> Stri
         return String::new();
     };
     let cal = &scenario.campaign.calendar;
-    let drove = |o: &CampaignOutcome| -> Vec<u32> {
-        o.sols.iter().filter(|r| r.drove).map(|r| r.sol).collect()
-    };
     let plans = |o: &CampaignOutcome| -> usize {
         let mut u: Vec<u32> = o
             .sols
@@ -440,6 +668,12 @@ pub fn against_ground(scenario: &Scenario, outcomes: &[CampaignOutcome]) -> Stri
         s,
         "\nAgainst ground (same seed, same calendar; one run — `--runs N` gives rates and intervals):"
     );
+    let _ = writeln!(
+        s,
+        "  (each gained drive sol is counted once, by the first that applies: {}; lost: sols \
+         ground drove and the strategy did not)",
+        GAINED_SOL_KINDS.join(", ")
+    );
     if let (Some(g), Some(b)) = (scenario.study_segment, segment(base)) {
         let _ = writeln!(
             s,
@@ -447,62 +681,38 @@ pub fn against_ground(scenario: &Scenario, outcomes: &[CampaignOutcome]) -> Stri
             g.distance_m, g.from_sol
         );
     }
-    let base_drove = drove(base);
     for o in outcomes
         .iter()
         .filter(|o| o.strategy != sim::Strategy::Ground)
     {
         let t = &o.totals;
         let bt = &base.totals;
-        let mine = drove(o);
-        let gained: Vec<u32> = mine
-            .iter()
-            .copied()
-            .filter(|d| !base_drove.contains(d))
-            .collect();
-        let lost = base_drove.iter().filter(|d| !mine.contains(d)).count();
-        let mut kinds: std::collections::BTreeMap<&str, u32> = std::collections::BTreeMap::new();
-        for sol in &gained {
-            if let Some(e) = cal.sols.iter().find(|e| e.sol == *sol) {
-                for k in sol_kinds(e) {
-                    *kinds.entry(k).or_default() += 1;
-                }
-            }
-        }
+        let (gained, lost) = gained_lost(o, base);
+        let kinds = gained_kind_counts(&gained, cal);
         let _ = writeln!(s, "  {}:", o.strategy);
         if let Some(seg) = segment(o) {
             let _ = writeln!(s, "    study segment: {seg}");
         }
-        let listed = gained
-            .iter()
-            .map(u32::to_string)
-            .collect::<Vec<_>>()
-            .join(", ");
-        let kinds_text = kinds
-            .iter()
-            .map(|(k, n)| format!("{n} {k}"))
-            .collect::<Vec<_>>()
-            .join(", ");
         let _ = writeln!(
             s,
-            "    drive sols: {} against {} ({:+}); gained {}{}{}",
+            "    drive sols: {} against {} ({:+}); gained {}{}; lost {}",
             t.drive_sols,
             bt.drive_sols,
             i64::from(t.drive_sols) - i64::from(bt.drive_sols),
             if gained.is_empty() {
                 "none".to_string()
             } else {
-                format!("sols {listed}")
+                format!("sols {}", sol_list(&gained))
             },
-            if kinds_text.is_empty() {
+            if kinds.is_empty() {
                 String::new()
             } else {
-                format!(" ({kinds_text})")
+                format!(" ({})", kinds.join(", "))
             },
-            if lost > 0 {
-                format!("; lost {lost}")
+            if lost.is_empty() {
+                "none".to_string()
             } else {
-                String::new()
+                format!("sols {}", sol_list(&lost))
             }
         );
         let _ = writeln!(

@@ -240,6 +240,71 @@ pub fn against_ground_over_runs(summary: &Summary, segment_sols_left: Option<u32
     s
 }
 
+/// The over-runs part of a strategy's clause in `solsim compare`'s verdict
+/// ([`crate::report::verdict`]): `over 200 runs: +1.99 drive sols [+1.95, +2.02], +399.2 m
+/// [+385.0, +412.2], study segment covered in 197 of 200 runs against ground's 0` — the mean
+/// paired differences from the baseline with their 95 % bootstrap intervals, as the section
+/// under the table prints them. `None` without a baseline or without the strategy.
+#[must_use]
+pub fn verdict_over_runs(summary: &Summary, strategy: &str) -> Option<String> {
+    let st = &summary.statistics;
+    let base = st.baseline.as_deref()?;
+    st.strategy(strategy)?;
+    let difference = |shown: &Shown| {
+        st.paired(strategy, shown.figure.name())
+            .and_then(|p| p.difference.as_ref())
+            .map(|d| shown.difference(d))
+    };
+    let mut parts = vec![format!("over {} runs:", summary.runs)];
+    let sols = Shown {
+        figure: Figure::DriveSols,
+        scale: 1.0,
+        unit: "drive sols",
+        decimals: 2,
+    };
+    let metres = Shown {
+        figure: Figure::DistanceM,
+        scale: 1.0,
+        unit: "m",
+        decimals: 1,
+    };
+    let mut figures: Vec<String> = [difference(&sols), difference(&metres)]
+        .into_iter()
+        .flatten()
+        .collect();
+    if summary.segment.is_some() {
+        let segment = Shown {
+            figure: Figure::SegmentSols,
+            scale: 1.0,
+            unit: "sols",
+            decimals: 2,
+        };
+        let covered = |s: &str| {
+            st.strategy(s)
+                .and_then(|x| x.figure(Figure::SegmentSols.name()))
+                .map_or(0, |sp| sp.n)
+        };
+        let paired = st
+            .paired(strategy, segment.figure.name())
+            .and_then(|p| p.difference.as_ref());
+        figures.push(match paired {
+            Some(d) => format!(
+                "study segment {} over the {} runs where both covered it",
+                segment.difference(d),
+                d.n
+            ),
+            None => format!(
+                "study segment covered in {} of {} runs against {base}'s {}",
+                covered(strategy),
+                summary.runs,
+                covered(base)
+            ),
+        });
+    }
+    parts.push(figures.join(", "));
+    Some(parts.join(" "))
+}
+
 /// `X against Y; difference D [lo, hi]` for a figure every run has.
 fn figure_line(shown: &Shown, strategy: &str, base: &str, st: &Statistics) -> String {
     let mean = |s: &str| {

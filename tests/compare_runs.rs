@@ -49,6 +49,25 @@ fn signed(x: f64, decimals: usize) -> String {
 fn the_one_run_table_comes_first_then_the_section_with_intervals() {
     let plain = compare(&[]);
     let runs = compare(&["--runs", "8"]);
+    // The verdict (the third line) adds the differences over the runs to each strategy's
+    // one-run clause (issue 28); the rest of the one-run output is unchanged.
+    let verdict = |text: &str| text.lines().nth(2).expect("a verdict line").to_string();
+    let (one, over) = (verdict(&plain), verdict(&runs));
+    let clauses: Vec<&str> = one.trim_end_matches('.').split("; ").collect();
+    let mut rest = over.as_str();
+    for clause in &clauses {
+        let at = rest
+            .find(clause)
+            .unwrap_or_else(|| panic!("{clause:?} not in the --runs verdict:\n{over}"));
+        rest = &rest[at + clause.len()..];
+    }
+    assert_eq!(
+        over.matches(" — over 8 runs: ").count(),
+        3,
+        "onboard, extension and extension+onboard: {over}"
+    );
+    let without_verdict = |text: &str| text.replacen(&verdict(text), "", 1);
+    let (plain, runs) = (without_verdict(&plain), without_verdict(&runs));
     assert!(
         runs.starts_with(&plain),
         "compare --runs must print the one-run output unchanged first:\n{runs}"
@@ -129,7 +148,9 @@ fn the_numbers_are_those_of_solsim_sweep() {
             .map(|p| p["difference"].clone())
             .expect("onboard has the figure")
     };
-    let section = &text[text.find("over 8 runs").expect("the section")..];
+    let section = &text[text
+        .find("Against ground over 8 runs")
+        .expect("the section")..];
     let onboard = &section[section.find("  onboard:\n").expect("onboard lines")..];
     let onboard = &onboard[..=onboard.find("\n  extension:").expect("next strategy")];
     for (figure, scale, decimals, unit) in [

@@ -14,8 +14,8 @@ use crate::autonav::{DriveContext, DriveLimits, RoverParams, RoverState};
 use crate::calendar::Calendar;
 use crate::localizer::OnboardLocalizer;
 use crate::outcome::{
-    ActivityStep, CampaignOutcome, FaultKind, LegClearance, LocalizationEvent, LocalizationKind,
-    LocalizationStep, ScienceTally, SkipReason, SolRecord, Totals,
+    ActivityStep, CampaignOutcome, DriveEnd, FaultKind, LegClearance, LocalizationEvent,
+    LocalizationKind, LocalizationStep, ScienceTally, SkipReason, SolRecord, Totals,
 };
 use crate::planning_grid::PlanningGrid;
 use crate::policy::{
@@ -324,6 +324,7 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
             reached_goal: false,
             plans: 0,
             shortened_for_passage: None,
+            drive_end: None,
             activity_plan: None,
             path_m: Vec::new(),
         };
@@ -332,14 +333,22 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
             let (drive_start, mut end) = cal.window_of(idx);
             // The ground's next plan needs this sol's panorama from the afternoon pass.
             let panorama_on_pass = entry.downlink_lmst.is_some() && panorama_sol == Some(idx);
+            // What the time limit is, for the sol log: the window, or the pass that cuts it.
+            let mut time_end = DriveEnd::DriveWindow { end };
             if let (true, Some(pass)) = (panorama_on_pass, entry.downlink_lmst) {
-                end = end.min((pass - i64::from(c.post_drive_imaging_s)).max(SolSeconds::MIDNIGHT));
+                let stop = (pass - i64::from(c.post_drive_imaging_s)).max(SolSeconds::MIDNIGHT);
+                if stop < end {
+                    end = stop;
+                    time_end = DriveEnd::PanoramaPass { end, pass };
+                }
             }
             let window = DriveLimits {
                 max_distance_m: None,
                 max_time_s: Some((end - drive_start).max(0) as f64),
             };
             let (mut limits, vo) = policy.drive_budget(entry, window);
+            // The record's distance for a replayed sol, before the passage limit joins it.
+            let record_distance_m = limits.max_distance_m;
             // The planners' passage limit (paper 000 §2: the drive is shortened).
             let passage_left_m = passage.map(|p| p.budget_since_fix_m - driven_since_fix_m);
             if let Some(left) = passage_left_m {
@@ -397,6 +406,32 @@ pub fn run_campaign(c: &Campaign, strategy: Strategy, legs: &[LegClearance]) -> 
             if passage_left_m.is_some_and(|left| result.distance_m >= left - 1e-6) {
                 record.shortened_for_passage = passage;
             }
+            let used = |limit: Option<f64>, spent: f64| limit.is_some_and(|l| spent >= l - 1e-6);
+            // The last drive segment the sol's plan ran (`drive#4/5`), if the plan split it.
+            let last_segment = record.activity_plan.as_ref().and_then(|p| {
+                p.timeline
+                    .iter()
+                    .filter_map(|t| {
+                        let (j, k) = t.activity.strip_prefix("drive#")?.split_once('/')?;
+                        Some((j.parse::<u32>().ok()?, k.parse::<u32>().ok()?))
+                    })
+                    .max()
+            });
+            record.drive_end = Some(if let Some(f) = &result.fault {
+                DriveEnd::Fault(f.kind)
+            } else if result.reached_goal {
+                DriveEnd::ReachedGoal
+            } else if let Some(p) = record.shortened_for_passage {
+                DriveEnd::ShortenedForPassage(p)
+            } else if used(record_distance_m, result.distance_m) {
+                DriveEnd::RecordDistance
+            } else if used(limits.max_time_s, result.drive_time_s) {
+                time_end
+            } else if let Some((driven, planned)) = last_segment.filter(|(j, k)| j < k) {
+                DriveEnd::PlanCut { driven, planned }
+            } else {
+                DriveEnd::StepLimit
+            });
             if result.fault.is_some() {
                 halted_by_fault = Some(idx);
             }

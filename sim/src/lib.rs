@@ -72,7 +72,7 @@ pub use autonav::RoverParams;
 pub use calendar::{Calendar, SolEntry};
 pub use campaign::{Campaign, run_campaign};
 pub use campaign_error::CampaignError;
-pub use outcome::{CampaignOutcome, Fault, FaultKind, SolRecord, Totals};
+pub use outcome::{CampaignOutcome, DriveEnd, Fault, FaultKind, SolRecord, Totals};
 pub use planning_grid::PlanningGrid;
 pub use strategy::Strategy;
 pub use uncertainty::UncertaintyModel;

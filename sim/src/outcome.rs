@@ -294,6 +294,80 @@ impl Serialize for SkipReason {
     }
 }
 
+/// Why a sol's drive ended: what stopped the rover, or the limit it ran into. Displayed, and
+/// serialised as a string, as the sol log's words (`time limit: drive window ends at 14:31
+/// LMST`, `shortened for passage: …`, `fault: NO_PATH`, …); `solsim run` prints it in its
+/// note column.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum DriveEnd {
+    /// The rover reached the end of the route.
+    ReachedGoal,
+    /// A fault stopped the drive (the sol's [`SolRecord::fault`]).
+    Fault(FaultKind),
+    /// The planners shortened the drive so their predicted uncertainty would not close the
+    /// passage ahead (the sol's [`SolRecord::shortened_for_passage`]).
+    ShortenedForPassage(PassageLimit),
+    /// A replay drove the distance the record gives for the sol.
+    RecordDistance,
+    /// The sol's drive window ran out.
+    DriveWindow {
+        /// When the window ends, seconds after local midnight.
+        end: crate::time::SolSeconds,
+    },
+    /// The drive was cut short so the post-drive panorama makes the afternoon pass the
+    /// ground's next plan needs.
+    PanoramaPass {
+        /// When the drive had to stop, seconds after local midnight.
+        end: crate::time::SolSeconds,
+        /// The pass, seconds after local midnight.
+        pass: crate::time::SolSeconds,
+    },
+    /// The sol's activity plan cut the drive: the segments after the last one driven no longer
+    /// fit the sol (science and the drive's own delays took their time) and were cancelled.
+    PlanCut {
+        /// Segments driven.
+        driven: u32,
+        /// Segments the plan had.
+        planned: u32,
+    },
+    /// None of the above: AutoNav's per-sol step cap
+    /// ([`crate::autonav::MAX_STEPS_PER_SOL`]) ended the drive.
+    StepLimit,
+}
+
+impl fmt::Display for DriveEnd {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let text = match self {
+            DriveEnd::ReachedGoal => "reached goal".to_string(),
+            DriveEnd::Fault(kind) => format!("fault: {kind}"),
+            DriveEnd::ShortenedForPassage(p) => format!(
+                "shortened for passage: predicted r {:.1} m would close the passage to waypoint {} (clearance {:.1} m)",
+                p.predicted_r_m, p.to_waypoint, p.clearance_m
+            ),
+            DriveEnd::RecordDistance => "drove the record's distance".to_string(),
+            DriveEnd::DriveWindow { end } => {
+                format!("time limit: drive window ends at {} LMST", end.lmst())
+            }
+            DriveEnd::PanoramaPass { end, pass } => format!(
+                "time limit: stopped at {} LMST so the panorama makes the {} LMST pass",
+                end.lmst(),
+                pass.lmst()
+            ),
+            DriveEnd::PlanCut { driven, planned } => format!(
+                "sol plan cut the drive: segments after {driven} of {planned} no longer fit"
+            ),
+            DriveEnd::StepLimit => "AutoNav step limit".to_string(),
+        };
+        f.pad(&text)
+    }
+}
+
+impl Serialize for DriveEnd {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_str(self)
+    }
+}
+
 /// A filter's 1σ position ellipse, with the angle MMGIS draws it at.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct PositionEllipse {
@@ -457,6 +531,9 @@ pub struct SolRecord {
     /// passage ahead (paper 000 §2): the limit it ran into.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub shortened_for_passage: Option<PassageLimit>,
+    /// Why the drive ended (`None` on a sol without a drive): the goal, a fault, the passage
+    /// limit, the record's distance, the drive window, the afternoon pass or the sol plan.
+    pub drive_end: Option<DriveEnd>,
     /// The sol's activity plan and timeline (drive sols only).
     pub activity_plan: Option<crate::sol_plan::SolPlan>,
     /// Estimated positions along the drive, map metres (exported as GeoJSON, not in the JSON).

@@ -118,9 +118,6 @@ pub(super) fn against_ground_table(
         return;
     };
     let cal = &scenario.campaign.calendar;
-    let drove = |o: &CampaignOutcome| -> Vec<u32> {
-        o.sols.iter().filter(|r| r.drove).map(|r| r.sol).collect()
-    };
     let plans = |o: &CampaignOutcome| -> usize {
         let mut u: Vec<u32> = o
             .sols
@@ -155,7 +152,6 @@ pub(super) fn against_ground_table(
         .map(String::from),
     );
     let mut rows = vec![header];
-    let base_drove = drove(base);
     let bt = &base.totals;
     // Ground first: the row the others are measured against.
     let order =
@@ -179,33 +175,20 @@ pub(super) fn against_ground_table(
                 ),
             });
         }
-        let mine = drove(o);
-        let gained: Vec<u32> = mine
-            .iter()
-            .copied()
-            .filter(|d| !base_drove.contains(d))
-            .collect();
-        let lost = base_drove.iter().filter(|d| !mine.contains(d)).count();
-        let mut kinds: std::collections::BTreeMap<&str, u32> = std::collections::BTreeMap::new();
-        for sol in &gained {
-            if let Some(e) = cal.sols.iter().find(|e| e.sol == *sol) {
-                for k in crate::report::sol_kinds(e) {
-                    *kinds.entry(k).or_default() += 1;
-                }
-            }
-        }
+        let (gained, lost) = crate::report::gained_lost(o, base);
+        let kinds = crate::report::gained_kind_counts(&gained, cal);
         let gained_text = if is_base {
             "—".to_string()
         } else if gained.is_empty() {
             "none".to_string()
+        } else if kinds.is_empty() {
+            format!("sols {}", crate::report::sol_list(&gained))
         } else {
-            let sols: Vec<String> = gained.iter().map(u32::to_string).collect();
-            let kinds: Vec<String> = kinds.iter().map(|(k, n)| format!("{n} {k}")).collect();
-            if kinds.is_empty() {
-                format!("sols {}", sols.join(", "))
-            } else {
-                format!("sols {} ({})", sols.join(", "), kinds.join(", "))
-            }
+            format!(
+                "sols {} ({})",
+                crate::report::sol_list(&gained),
+                kinds.join(", ")
+            )
         };
         row.extend([
             against(
@@ -218,8 +201,10 @@ pub(super) fn against_ground_table(
             gained_text,
             if is_base {
                 "—".to_string()
+            } else if lost.is_empty() {
+                "none".to_string()
             } else {
-                lost.to_string()
+                format!("sols {}", crate::report::sol_list(&lost))
             },
             against(
                 format!("{:.1}", t.distance_m),
