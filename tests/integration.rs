@@ -71,6 +71,7 @@ mod issue_27_calendar_fields;
 mod issue_27_ground_skips_driven_sols;
 mod issue_28_broken_pipe_completions_man;
 mod issue_28_did_you_mean;
+mod issue_28_json_flags;
 mod localize_cli;
 mod localizer_comparison;
 mod mars_time_mars24;
