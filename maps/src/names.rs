@@ -129,10 +129,7 @@ pub fn parse_unknown_name(message: &str) -> Option<UnknownName<'_>> {
     let name = &after[..i];
     let mut list = after[i + "`, expected ".len()..].trim_start_matches("one of ");
     let mut expected = Vec::new();
-    loop {
-        let Some(quoted) = list.strip_prefix('`') else {
-            break;
-        };
+    while let Some(quoted) = list.strip_prefix('`') {
         let Some(end) = quoted.find('`') else {
             break;
         };
