@@ -48,6 +48,11 @@ pub struct ReportArgs {
     /// it; each fault's zoom by the fault's r].
     #[arg(long, value_name = "R")]
     pub map_r_m: Option<f64>,
+    /// Print what was written as one JSON document instead of the line of text: `{"report"
+    /// (the path of report.html), "kind" ("compare" or "sweep"), "title", "figures" (inline),
+    /// "bytes", "dir" (the directory reported on)}`.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Checks `--map-r-m`.
@@ -117,7 +122,8 @@ pub fn run(a: &ReportArgs, budget: MemoryBudget, stdout: &mut dyn Write) -> anyh
     }
     check_out(&a.dir, &a.out)?;
     OutputSet::check(&a.out)?;
-    let (html, what) = if a.dir.join(sweep::manifest::MANIFEST).exists() {
+    let is_sweep = a.dir.join(sweep::manifest::MANIFEST).exists();
+    let (html, what) = if is_sweep {
         let sweep = sweep::engine::read_complete(&a.dir, budget)?;
         let what = report_html::sweep_title(&sweep);
         (report_html::sweep_report(&sweep)?, what)
@@ -128,6 +134,18 @@ pub fn run(a: &ReportArgs, budget: MemoryBudget, stdout: &mut dyn Write) -> anyh
     let path = set.write("report.html", html.as_bytes())?;
     set.commit()?;
     let figures = html.matches("<figure").count();
+    if a.json {
+        let doc = serde_json::json!({
+            "report": path.display().to_string(),
+            "kind": if is_sweep { "sweep" } else { "compare" },
+            "title": what,
+            "figures": figures,
+            "bytes": html.len(),
+            "dir": a.dir.display().to_string(),
+        });
+        writeln!(stdout, "{}", serde_json::to_string_pretty(&doc)?)?;
+        return Ok(());
+    }
     writeln!(
         stdout,
         "wrote {} ({what}; {figures} figures inline, {:.0} KB, no network needed)",

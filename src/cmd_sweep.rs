@@ -86,9 +86,15 @@ struct SweepRunArgs {
     #[arg(long, value_name = "N", default_value_t = DEFAULT_CHUNK_RUNS,
           value_parser = clap::value_parser!(u64).range(1..=100_000))]
     chunk_runs: u64,
-    /// No progress and no table: only errors.
+    /// No progress and no table: only errors (and with --json, the JSON).
     #[arg(long, short)]
     quiet: bool,
+    /// Print what the sweep did as one JSON document instead of the table: scenario, seed,
+    /// runs (and this directory's run range and shard), strategies, baseline, run indices run
+    /// and resumed, seconds, threads, the files in --out with their bytes and SHA-256, and the
+    /// statistics of summary.json.
+    #[arg(long)]
+    json: bool,
 }
 
 #[derive(Args)]
@@ -99,9 +105,14 @@ struct MergeArgs {
     /// Output directory (new or empty).
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
-    /// Print nothing but errors.
+    /// Print nothing but errors (and with --json, the JSON).
     #[arg(long, short)]
     quiet: bool,
+    /// Print what was merged as one JSON document instead of the line of text: the shard
+    /// directories, scenario, seed, runs, strategies, baseline, the files in --out with their
+    /// bytes and SHA-256, and the statistics of the merged summary.json.
+    #[arg(long)]
+    json: bool,
 }
 
 #[derive(Args)]
@@ -215,7 +226,15 @@ fn sweep(a: &SweepRunArgs, budget: MemoryBudget, stdout: &mut dyn Write) -> anyh
     });
     progress.finish();
     let result = result?;
-    if !a.quiet {
+    if a.json {
+        let doc = SweepJson {
+            merged_from: None,
+            seconds: Some(started.elapsed().as_secs_f64()),
+            threads: Some(pool.current_num_threads()),
+            ..SweepJson::of(&result)?
+        };
+        writeln!(stdout, "{}", serde_json::to_string_pretty(&doc)?)?;
+    } else if !a.quiet {
         let secs = started.elapsed().as_secs_f64();
         write!(
             stdout,
@@ -228,7 +247,16 @@ fn sweep(a: &SweepRunArgs, budget: MemoryBudget, stdout: &mut dyn Write) -> anyh
 
 fn merge(a: &MergeArgs, stdout: &mut dyn Write) -> anyhow::Result<()> {
     let result = sweep::merge(&a.dirs, &a.out)?;
-    if !a.quiet {
+    if a.json {
+        let doc = SweepJson {
+            merged_from: Some(a.dirs.iter().map(|d| d.display().to_string()).collect()),
+            runs_run: None,
+            runs_resumed: None,
+            already_complete: None,
+            ..SweepJson::of(&result)?
+        };
+        writeln!(stdout, "{}", serde_json::to_string_pretty(&doc)?)?;
+    } else if !a.quiet {
         writeln!(
             stdout,
             "merged {} into {}/ ({} × {})",
@@ -239,6 +267,105 @@ fn merge(a: &MergeArgs, stdout: &mut dyn Write) -> anyhow::Result<()> {
         )?;
     }
     Ok(())
+}
+
+/// A file a command wrote, as its `--json` describes it.
+#[derive(serde::Serialize)]
+pub struct WrittenFile {
+    /// Name inside the output directory.
+    pub file: String,
+    /// Size, bytes.
+    pub bytes: u64,
+    /// SHA-256 of its bytes, hex, where the command records it (a sweep's manifest).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sha256: Option<String>,
+}
+
+impl WrittenFile {
+    /// `dir/file`'s size as written, with `sha256` if known.
+    ///
+    /// # Errors
+    /// The file cannot be read (it was just written: a race with something else).
+    pub fn of(dir: &Path, file: &str, sha256: Option<String>) -> anyhow::Result<Self> {
+        let path = dir.join(file);
+        let bytes = std::fs::metadata(&path)
+            .with_context(|| format!("{}: cannot read what was written", path.display()))?
+            .len();
+        Ok(WrittenFile {
+            file: file.to_owned(),
+            bytes,
+            sha256,
+        })
+    }
+}
+
+/// `sweep --json` and `sweep merge --json`: what the command wrote and the statistics.
+#[derive(serde::Serialize)]
+struct SweepJson<'a> {
+    /// The output directory.
+    dir: String,
+    /// `sweep merge`: the shard directories, as given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    merged_from: Option<Vec<String>>,
+    scenario: &'a sweep::manifest::ScenarioId,
+    seed: u64,
+    /// Run indices 0..runs of the whole sweep.
+    runs: u64,
+    /// The run indices this directory holds, [first, end).
+    run_range: [u64; 2],
+    shard: Option<sweep::manifest::ShardInfo>,
+    strategies: &'a [String],
+    baseline: Option<&'a str>,
+    /// Run indices simulated by this command (`sweep`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    runs_run: Option<u64>,
+    /// Run indices found committed by an interrupted sweep (`sweep --resume`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    runs_resumed: Option<u64>,
+    /// The directory held the complete sweep already (`sweep --resume`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    already_complete: Option<bool>,
+    /// Wall time, seconds (`sweep`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    seconds: Option<f64>,
+    /// Worker threads (`sweep`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    threads: Option<usize>,
+    /// Every file in the directory: the outputs with their SHA-256, then manifest.json.
+    files: Vec<WrittenFile>,
+    /// As in summary.json.
+    statistics: &'a Statistics,
+}
+
+impl<'a> SweepJson<'a> {
+    fn of(r: &'a SweepResult) -> anyhow::Result<Self> {
+        let m = &r.manifest;
+        let mut files = m
+            .files
+            .iter()
+            .map(|(name, sha)| WrittenFile::of(&r.dir, name, Some(sha.clone())))
+            .collect::<anyhow::Result<Vec<_>>>()?;
+        files.push(WrittenFile::of(&r.dir, sweep::manifest::MANIFEST, None)?);
+        let range = m.shard.map_or([0, m.runs], |sh| [sh.first_run, sh.end_run]);
+        Ok(SweepJson {
+            dir: r.dir.display().to_string(),
+            merged_from: None,
+            scenario: &m.scenario,
+            seed: m.seed,
+            runs: m.runs,
+            run_range: range,
+            shard: m.shard,
+            strategies: &m.strategies,
+            baseline: m.baseline.as_deref(),
+            runs_run: Some(r.runs_run),
+            runs_resumed: Some(r.runs_resumed),
+            already_complete: Some(r.already_complete),
+            seconds: None,
+            threads: None,
+            files,
+            statistics: &r.summary.statistics,
+        })
+    }
 }
 
 /// Quotes `s` for bash (single quotes): every byte inside is data, none is code.

@@ -32,6 +32,7 @@
 pub mod input_file;
 pub mod mars_crs;
 pub mod memory_budget;
+pub mod names;
 pub mod package;
 pub mod procedural;
 pub mod raster;

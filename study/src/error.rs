@@ -114,10 +114,11 @@ impl ScenarioError {
             .trim();
         let (text, message) = if quotes_toml_excerpt(text, line_start, known_keys) {
             let line_text = text[line_start..].lines().next().unwrap_or("").trim();
-            (
-                Some(excerpt(line_text, MAX_EXCERPT_CHARS)),
-                excerpt(&readable_numbers(parser_says), MAX_EXCERPT_CHARS),
-            )
+            // A misspelt key or name: the closest known one first, then the format's names
+            // whole (cutting the message at MAX_EXCERPT_CHARS lost them).
+            let message = maps::names::unknown_name_message(parser_says, MAX_EXCERPT_CHARS)
+                .unwrap_or_else(|| excerpt(&readable_numbers(parser_says), MAX_EXCERPT_CHARS));
+            (Some(excerpt(line_text, MAX_EXCERPT_CHARS)), message)
         } else {
             let keys = match known_keys {
                 [] => "this kind of file's".to_owned(),
@@ -369,7 +370,10 @@ mod tests {
             "f.toml: line 1, column 1 (`name = \"x\"`): missing field `seed`"
         );
         // The first key misspelled, the rest of the file solsim's: quoted.
-        assert!(syntax("nmae = \"x\"\nseed = 1\n").contains("unknown field `nmae`"));
+        assert!(
+            syntax("nmae = \"x\"\nseed = 1\n")
+                .contains("unknown field `nmae` (did you mean `name`?), expected `name` or `seed`")
+        );
     }
 
     #[test]

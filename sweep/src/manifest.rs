@@ -177,7 +177,9 @@ impl Manifest {
                 &path,
                 "(file)",
                 "a solsim sweep manifest",
-                maps::input_file::excerpt(&e.to_string(), 200),
+                // A misspelt key names the closest known one before the list, kept whole.
+                maps::names::unknown_name_message(&e.to_string(), 120)
+                    .unwrap_or_else(|| maps::input_file::excerpt(&e.to_string(), 200)),
             )
         })?;
         if m.format != FORMAT {

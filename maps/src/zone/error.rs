@@ -127,8 +127,11 @@ pub enum ZoneError {
 
     /// A feature has no `properties.kind`.
     #[error(
-        "{}: features[{feature}] ({}).properties.kind: missing; expected \"keep_in\" or \"keep_out\"",
-        path.display(), crate::input_file::excerpt(&format!("{name:?}"), 80)
+        "{}: features[{feature}] ({}).properties.kind: missing{}; expected \"keep_in\" or \"keep_out\"",
+        path.display(), crate::input_file::excerpt(&format!("{name:?}"), 80),
+        misspelt.as_ref().map_or(String::new(), |k| format!(
+            " (the properties have `{}`: did you mean `kind`?)", crate::input_file::excerpt(k, 80)
+        ))
     )]
     MissingKind {
         /// The zones file.
@@ -137,6 +140,8 @@ pub enum ZoneError {
         feature: usize,
         /// The feature's name, or `zone-<index>`.
         name: String,
+        /// A property key that misspells `kind` (`knd`, `Kind`), if one does.
+        misspelt: Option<String>,
     },
 
     /// A feature's `properties.kind` is not one of the known kinds.

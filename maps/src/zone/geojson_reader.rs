@@ -175,10 +175,16 @@ fn read_feature(i: usize, value: Value, path: &Path) -> Result<ZoneRecord, ZoneE
         })?;
     let kind = match feature.property("kind") {
         None | Some(Value::Null) => {
+            let misspelt = feature.properties.as_ref().and_then(|p| {
+                p.keys()
+                    .find(|k| crate::names::closest(k, &["kind"]).is_some())
+                    .cloned()
+            });
             return Err(ZoneError::MissingKind {
                 path: path.to_owned(),
                 feature: i,
                 name,
+                misspelt,
             });
         }
         Some(value) => match value.as_str().and_then(parse_kind) {
