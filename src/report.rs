@@ -427,21 +427,29 @@ pub(crate) fn gained_kind_counts(gained: &[u32], cal: &sim::Calendar) -> Vec<Str
         .collect()
 }
 
-/// Sols `o` drove that `base` did not (gained), and sols `base` drove that `o` did not (lost).
+/// Sols `o` drove that `base` did not while `base` was still short of the goal (gained), and sols
+/// `base` drove that `o` did not while `o` was still short of it (lost). A strategy that has
+/// reached the goal has no more sols to lose: not driving after it is not a loss.
 pub(crate) fn gained_lost(o: &CampaignOutcome, base: &CampaignOutcome) -> (Vec<u32>, Vec<u32>) {
     let drove = |o: &CampaignOutcome| -> Vec<u32> {
         o.sols.iter().filter(|r| r.drove).map(|r| r.sol).collect()
     };
+    // The sol each reached the goal on, if it did.
+    let goal_sol = |o: &CampaignOutcome| -> Option<u32> {
+        let first = o.sols.first()?.sol;
+        o.totals.sols_to_goal.map(|n| first + n.saturating_sub(1))
+    };
+    let still_driving = |o: &CampaignOutcome, sol: u32| goal_sol(o).is_none_or(|g| sol <= g);
     let (mine, theirs) = (drove(o), drove(base));
     let gained = mine
         .iter()
         .copied()
-        .filter(|d| !theirs.contains(d))
+        .filter(|&d| !theirs.contains(&d) && still_driving(base, d))
         .collect();
     let lost = theirs
         .iter()
         .copied()
-        .filter(|d| !mine.contains(d))
+        .filter(|&d| !mine.contains(&d) && still_driving(o, d))
         .collect();
     (gained, lost)
 }
@@ -544,6 +552,23 @@ pub fn verdict(
                 parts.push(format!("drives {d_m:.0} m more"));
             } else {
                 parts.push(format!("drives {:.0} m less", -d_m));
+            }
+            match (o.totals.sols_to_goal, base.totals.sols_to_goal) {
+                (Some(m), Some(b)) if m < b => parts.push(format!(
+                    "reaches the goal {} sooner (in {m} sols against {b})",
+                    count((b - m) as usize, "sol")
+                )),
+                (Some(m), Some(b)) if m > b => parts.push(format!(
+                    "reaches the goal {} later (in {m} sols against {b})",
+                    count((m - b) as usize, "sol")
+                )),
+                (Some(m), None) => parts.push(format!(
+                    "reaches the goal in {m} sols, which ground does not within the calendar"
+                )),
+                (None, Some(b)) => parts.push(format!(
+                    "does not reach the goal within the calendar, which ground does in {b} sols"
+                )),
+                _ => {}
             }
             if let Some(g) = scenario.study_segment {
                 let mine = o.sols_to_cover(g.from_sol, g.distance_m);
@@ -671,7 +696,7 @@ pub fn against_ground(scenario: &Scenario, outcomes: &[CampaignOutcome]) -> Stri
     let _ = writeln!(
         s,
         "  (each gained drive sol is counted once, by the first that applies: {}; lost: sols \
-         ground drove and the strategy did not)",
+         ground drove and the strategy did not, before it reached the goal)",
         GAINED_SOL_KINDS.join(", ")
     );
     if let (Some(g), Some(b)) = (scenario.study_segment, segment(base)) {
