@@ -5,44 +5,13 @@
 
 use crate::common;
 
-use std::process::Command;
-
 use common::{root, solsim, stderr};
 
 const BENCH: [&str; 5] = ["localize-bench", "--cases", "24", "--methods", "ncc"];
 
-/// What `solsim ARGS` writes to a pseudo-terminal (stdout and stderr both), or `None` without
-/// `script` (required under CI).
-fn on_a_terminal(args: &[&str]) -> Option<String> {
-    let bin = env!("CARGO_BIN_EXE_solsim");
-    let line = std::iter::once(bin)
-        .chain(args.iter().copied())
-        .map(|a| format!("'{a}'"))
-        .collect::<Vec<_>>()
-        .join(" ");
-    match Command::new("script")
-        .args(["-qefc", &line, "/dev/null"])
-        .current_dir(root())
-        .output()
-    {
-        Ok(o) => {
-            assert!(o.status.success(), "{line}: {}", stderr(&o));
-            Some(String::from_utf8_lossy(&o.stdout).into_owned())
-        }
-        Err(e) => {
-            common::external::unavailable(
-                &format!("{}: the terminal half of the progress test", module_path!()),
-                &format!("util-linux's `script` does not run ({e})"),
-                "apt-get install util-linux",
-            );
-            None
-        }
-    }
-}
-
 #[test]
 fn localize_bench_draws_a_bar_on_a_terminal_only() {
-    if let Some(tty) = on_a_terminal(&BENCH) {
+    if let Some(tty) = common::on_a_terminal(&BENCH) {
         assert!(tty.contains("ncc ") && tty.contains("/24 cases"), "{tty}");
         assert!(
             tty.contains("rejected by validity checks"),
@@ -57,7 +26,7 @@ fn localize_bench_draws_a_bar_on_a_terminal_only() {
 #[test]
 fn seu_campaign_draws_a_bar_on_a_terminal_only() {
     let args = ["seu-campaign", "--runs", "40"];
-    if let Some(tty) = on_a_terminal(&args) {
+    if let Some(tty) = common::on_a_terminal(&args) {
         assert!(
             tty.contains("seu-campaign ") && tty.contains("/40 runs"),
             "{tty}"
@@ -89,7 +58,7 @@ fn map_package_draws_a_bar_on_a_terminal_only() {
     };
     let tty_args = args(&tty_out);
     let tty_args: Vec<&str> = tty_args.iter().map(String::as_str).collect();
-    if let Some(tty) = on_a_terminal(&tty_args) {
+    if let Some(tty) = common::on_a_terminal(&tty_args) {
         assert!(
             tty.contains("map package ") && tty.contains(" tiles"),
             "{tty}"

@@ -10,10 +10,9 @@
 
 use crate::common;
 
-use std::process::Command;
 use std::time::Duration;
 
-use common::{assert_bad_input, output_within, root, solsim, stderr};
+use common::{assert_bad_input, output_within, solsim, stderr};
 
 /// A recipe of `width_px` × `width_px` pixels of 1 m with `extra` lines in `[terrain]`.
 fn recipe(dir: &std::path::Path, width_px: usize, extra: &str) -> std::path::PathBuf {
@@ -88,36 +87,11 @@ fn map_generate_draws_a_bar_over_its_rows_on_a_terminal_only() {
         dir.path().join("tty").to_string_lossy().into_owned(),
         dir.path().join("piped").to_string_lossy().into_owned(),
     );
-    let line = [
-        env!("CARGO_BIN_EXE_solsim"),
-        "map",
-        "generate",
-        &path,
-        "--out",
-        &tty_out,
-    ]
-    .map(|a| format!("'{a}'"))
-    .join(" ");
-    match Command::new("script")
-        .args(["-qefc", &line, "/dev/null"])
-        .current_dir(root())
-        .output()
-    {
-        Ok(o) => {
-            assert!(o.status.success(), "{line}: {}", stderr(&o));
-            let tty = String::from_utf8_lossy(&o.stdout);
-            assert!(
-                tty.contains("map generate ") && tty.contains("/1500 rows"),
-                "{tty:.2000}"
-            );
-        }
-        Err(e) => {
-            common::external::unavailable(
-                &format!("{}: the terminal half of the progress test", module_path!()),
-                &format!("util-linux's `script` does not run ({e})"),
-                "apt-get install util-linux",
-            );
-        }
+    if let Some(tty) = common::on_a_terminal(&["map", "generate", &path, "--out", &tty_out]) {
+        assert!(
+            tty.contains("map generate ") && tty.contains("/1500 rows"),
+            "{tty:.2000}"
+        );
     }
     let o = solsim()
         .args(["map", "generate", &path, "--out", &piped_out])

@@ -17,10 +17,9 @@
 use crate::common;
 
 use std::path::PathBuf;
-use std::process::Command;
 use std::time::{Duration, Instant};
 
-use common::{assert_bad_input, output_within, replace_line, root, scenario_copy, solsim, stderr};
+use common::{assert_bad_input, output_within, replace_line, scenario_copy, solsim, stderr};
 use rand::{RngExt, SeedableRng};
 
 /// A copy of `scenarios/crater-floor-passage.toml` without zones (open ground) whose route is a seeded
@@ -97,34 +96,6 @@ fn routes_over_the_caps_are_refused_before_their_searches() {
     );
 }
 
-/// What `solsim ARGS` writes to a pseudo-terminal (stdout and stderr both), or `None` without
-/// `script` (required under CI), as tests/issue_13_progress.rs does.
-fn on_a_terminal(args: &[&str]) -> Option<String> {
-    let line = std::iter::once(env!("CARGO_BIN_EXE_solsim"))
-        .chain(args.iter().copied())
-        .map(|a| format!("'{a}'"))
-        .collect::<Vec<_>>()
-        .join(" ");
-    match Command::new("script")
-        .args(["-qefc", &line, "/dev/null"])
-        .current_dir(root())
-        .output()
-    {
-        Ok(o) => {
-            assert!(o.status.success(), "{line}: {}", stderr(&o));
-            Some(String::from_utf8_lossy(&o.stdout).into_owned())
-        }
-        Err(e) => {
-            common::external::unavailable(
-                &format!("{}: the terminal half of the progress test", module_path!()),
-                &format!("util-linux's `script` does not run ({e})"),
-                "apt-get install util-linux",
-            );
-            None
-        }
-    }
-}
-
 #[test]
 fn validate_and_run_draw_a_bar_over_the_legs_on_a_terminal_only() {
     let (scenario, _dir) = walk(3200);
@@ -133,7 +104,7 @@ fn validate_and_run_draw_a_bar_over_the_legs_on_a_terminal_only() {
         (vec!["validate", path.as_str()], "validate "),
         (vec!["run", "--no-files", path.as_str()], "run "),
     ] {
-        if let Some(tty) = on_a_terminal(&command) {
+        if let Some(tty) = common::on_a_terminal(&command) {
             assert!(
                 tty.contains(label) && tty.contains("/3200 legs"),
                 "{command:?}: {tty:.2000}"

@@ -144,13 +144,14 @@ fn number(text: &str) -> Option<(f64, usize)> {
     t.parse::<f64>().ok().map(|v| (v, decimals))
 }
 
+/// A number as printed: (value, decimals).
+type Printed = (f64, usize);
+
+/// An interval as printed: the value before it, if any, and its bounds.
+type Interval = (Option<Printed>, Printed, Printed);
+
 /// The `[a, b]` intervals (with the value before them, when one is) and `k of n` counts in `text`.
-fn quoted(
-    text: &str,
-) -> (
-    Vec<(Option<(f64, usize)>, (f64, usize), (f64, usize))>,
-    Vec<String>,
-) {
+fn quoted(text: &str) -> (Vec<Interval>, Vec<String>) {
     let mut intervals = Vec::new();
     let mut rest = text;
     while let Some(open) = rest.find('[') {

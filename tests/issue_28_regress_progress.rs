@@ -5,8 +5,6 @@
 
 use crate::common;
 
-use std::process::Command;
-
 use common::{rebase, root, solsim, stderr};
 
 /// A directory with one scenario of three checks of one run.
@@ -18,46 +16,18 @@ fn three_checks() -> tempfile::TempDir {
     dir
 }
 
-/// What `solsim ARGS` writes to a pseudo-terminal (stdout and stderr both), or `None` without
-/// `script` (required under CI).
-fn on_a_terminal(args: &[&str]) -> Option<String> {
-    let line = std::iter::once(env!("CARGO_BIN_EXE_solsim"))
-        .chain(args.iter().copied())
-        .map(|a| format!("'{a}'"))
-        .collect::<Vec<_>>()
-        .join(" ");
-    match Command::new("script")
-        .args(["-qefc", &line, "/dev/null"])
-        .current_dir(root())
-        .output()
-    {
-        Ok(o) => {
-            assert!(o.status.success(), "{line}: {}", stderr(&o));
-            Some(String::from_utf8_lossy(&o.stdout).into_owned())
-        }
-        Err(e) => {
-            assert!(
-                std::env::var_os("CI").is_none(),
-                "script (util-linux) is required under CI: {e}"
-            );
-            eprintln!("NOTE: no `script` ({e}): the terminal half of the progress test skipped");
-            None
-        }
-    }
-}
-
 #[test]
 fn regress_draws_a_bar_on_a_terminal_only() {
     let dir = three_checks();
     let path = dir.path().to_str().expect("utf-8");
-    if let Some(tty) = on_a_terminal(&["regress", path]) {
+    if let Some(tty) = common::on_a_terminal(&["regress", path]) {
         assert!(
             tty.contains("regress ") && tty.contains("/3 checks"),
             "{tty}"
         );
         assert!(tty.contains("3 passed, 0 failed"), "the report too: {tty}");
     }
-    if let Some(tty) = on_a_terminal(&["regress", path, "--quiet"]) {
+    if let Some(tty) = common::on_a_terminal(&["regress", path, "--quiet"]) {
         assert!(!tty.contains("/3 checks"), "--quiet draws no bar: {tty}");
         assert!(tty.contains("3 passed, 0 failed"), "{tty}");
     }

@@ -62,16 +62,6 @@ pub fn peers_python(root: &std::path::Path, check: &str) -> Option<std::path::Pa
 /// The command that creates `peers/.venv` with every peer package (what `scripts/test.sh` runs).
 pub const PEERS_INSTALL: &str = "python3 peers/setup_venv.py";
 
-/// Whether `program` runs (`program --version` or `args` exits 0).
-pub fn runs(program: &str, args: &[&str]) -> bool {
-    std::process::Command::new(program)
-        .args(args)
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::null())
-        .status()
-        .is_ok_and(|s| s.success())
-}
-
 fn one_line(s: &str) -> String {
     s.replace(['\t', '\n', '\r'], " ")
 }

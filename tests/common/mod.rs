@@ -140,6 +140,36 @@ pub fn peers_python(check: &str) -> Option<PathBuf> {
     external::peers_python(&root(), check)
 }
 
+/// What `solsim ARGS`, run from the repository, writes to a pseudo-terminal (stdout and stderr
+/// both), through util-linux's `script`; it must exit 0. Without `script` the test fails naming
+/// `apt-get install util-linux`, unless the run opted out of the external checks: then `None`,
+/// counted ([`external::unavailable`]).
+pub fn on_a_terminal(args: &[&str]) -> Option<String> {
+    let line = std::iter::once(env!("CARGO_BIN_EXE_solsim"))
+        .chain(args.iter().copied())
+        .map(|a| format!("'{a}'"))
+        .collect::<Vec<_>>()
+        .join(" ");
+    match Command::new("script")
+        .args(["-qefc", &line, "/dev/null"])
+        .current_dir(root())
+        .output()
+    {
+        Ok(o) => {
+            assert!(o.status.success(), "{line}: {}", stderr(&o));
+            Some(String::from_utf8_lossy(&o.stdout).into_owned())
+        }
+        Err(e) => {
+            external::unavailable(
+                "a progress bar drawn on a terminal",
+                &format!("util-linux's `script` does not run ({e})"),
+                "apt-get install util-linux",
+            );
+            None
+        }
+    }
+}
+
 /// Runs solsim from the repository with `args` then `paths`, asserts exit 0, returns stdout.
 pub fn run_ok(args: &[&str], paths: &[&std::path::Path]) -> String {
     let o = solsim()
