@@ -52,14 +52,24 @@ fn rapid_traverse_verdict_names_the_sols_and_metres() {
 
 #[test]
 fn a_verdict_says_when_nothing_is_gained_and_names_lost_sols() {
-    // crater-floor-passage: onboard drives 385, which ground skips, but not 386.
+    // crater-floor-passage: onboard drives 385, which ground skips, and is at the goal before
+    // ground drives 386 (not a loss: tests/issue_28_lost_after_goal.rs).
     let (line, _) = verdict(&["scenarios/crater-floor-passage.toml"]);
     assert!(
-        line.contains("onboard localization gains 1 drive sol (385) but loses 1 (386)"),
+        line.contains(
+            "onboard localization gains 1 drive sol (385), drives 7 m less, and reaches the goal \
+             1 sol sooner (in 3 sols against 4)"
+        ),
         "{line}"
     );
     assert!(
         line.contains("extension gains no drive sol and drives"),
+        "{line}"
+    );
+    // conjunction: extension gains 603-605 but loses 624.
+    let (line, _) = verdict(&["scenarios/conjunction.toml"]);
+    assert!(
+        line.contains("extension gains 3 drive sols (603-605) but loses 1 (624)"),
         "{line}"
     );
     // sol717-719: the same drive sols under every strategy.

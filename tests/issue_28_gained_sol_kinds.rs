@@ -8,6 +8,22 @@ use crate::common;
 
 use common::run_ok;
 
+/// Per strategy, its `sols_to_goal` column in the table ("-" when it did not reach the goal).
+fn sols_to_goal(scenario: &str) -> Vec<(String, String)> {
+    let out = run_ok(&["compare", scenario, "--no-files"], &[]);
+    let table = &out[out.find("\nstrategy ").expect("the table")..];
+    table
+        .lines()
+        .skip(2)
+        .take_while(|l| !l.is_empty())
+        .map(|l| {
+            let mut w = l.split_whitespace();
+            let name = w.next().expect("name").to_string();
+            (name, w.next().expect("sols_to_goal").to_string())
+        })
+        .collect()
+}
+
 /// Per strategy, the `drive sols:` line under the table.
 fn drive_sol_lines(scenario: &str) -> Vec<(String, String)> {
     let out = run_ok(&["compare", scenario, "--no-files"], &[]);
@@ -79,6 +95,15 @@ fn gained_sols_are_counted_once_and_lost_sols_named() {
     ];
     let mut seen_lost = false;
     for scenario in scenarios {
+        let goals = sols_to_goal(scenario);
+        let goal = |name: &str| {
+            goals
+                .iter()
+                .find(|(n, _)| n == name)
+                .unwrap_or_else(|| panic!("{name} in {goals:?}"))
+                .1
+                .clone()
+        };
         for (strategy, line) in drive_sol_lines(scenario) {
             let (gained, kinds, lost) = parse(&line);
             let counted: u32 = kinds.iter().map(|(n, _)| n).sum();
@@ -99,15 +124,18 @@ fn gained_sols_are_counted_once_and_lost_sols_named() {
                 .map(|(_, k)| order.iter().position(|o| o == k).expect("a known kind"))
                 .collect();
             assert!(at.windows(2).all(|w| w[0] < w[1]), "{line}");
-            // `drive sols: A against B (±d)`: gained − lost = A − B.
+            // `drive sols: A against B (±d)`: gained − lost = A − B when both reach the goal on
+            // the same sol or neither does (sols after one's goal are neither gained nor lost).
             let (a, rest) = line.split_once(" against ").expect("against");
             let b = rest.split_once(' ').expect("b").0;
             let (a, b): (i64, i64) = (a.parse().expect("a"), b.parse().expect("b"));
-            assert_eq!(
-                gained.len() as i64 - lost.len() as i64,
-                a - b,
-                "{scenario} {strategy}: {line}"
-            );
+            if goal(&strategy) == goal("ground") {
+                assert_eq!(
+                    gained.len() as i64 - lost.len() as i64,
+                    a - b,
+                    "{scenario} {strategy}: {line}"
+                );
+            }
             seen_lost |= !lost.is_empty();
         }
     }
@@ -128,7 +156,16 @@ fn gained_sols_are_counted_once_and_lost_sols_named() {
         .find(|(s, _)| s == "onboard")
         .expect("onboard")
         .1;
-    assert!(onboard.ends_with("; lost sols 386"), "{onboard}");
+    // It reaches the goal on its third sol, 385; ground drives 386 on its way there: not a
+    // loss (tests/issue_28_lost_after_goal.rs).
+    assert!(onboard.ends_with("; lost none"), "{onboard}");
+    let lines = drive_sol_lines("scenarios/conjunction.toml");
+    let extension = &lines
+        .iter()
+        .find(|(s, _)| s == "extension")
+        .expect("extension")
+        .1;
+    assert!(extension.ends_with("; lost sols 624"), "{extension}");
 }
 
 #[test]
