@@ -409,7 +409,7 @@ fn gained_sol_kind(entry: &sim::SolEntry) -> &'static str {
 
 /// "1 no downlink pass", "1 restricted", …: the gained sols counted once each, by their first
 /// kind ([`GAINED_SOL_KINDS`] order), kinds with none left out.
-pub(crate) fn gained_kind_counts(gained: &[u32], cal: &sim::Calendar) -> Vec<String> {
+fn gained_kind_counts(gained: &[u32], cal: &sim::Calendar) -> Vec<String> {
     GAINED_SOL_KINDS
         .iter()
         .filter_map(|kind| {
@@ -454,8 +454,47 @@ pub(crate) fn gained_lost(o: &CampaignOutcome, base: &CampaignOutcome) -> (Vec<u
     (gained, lost)
 }
 
+/// `sols 403, 406 (1 no downlink pass, 1 restricted)`, or `none`: gained sols with their kinds.
+pub(crate) fn gained_text(gained: &[u32], cal: &sim::Calendar) -> String {
+    if gained.is_empty() {
+        return "none".into();
+    }
+    let kinds = gained_kind_counts(gained, cal);
+    if kinds.is_empty() {
+        format!("sols {}", sol_list(gained))
+    } else {
+        format!("sols {} ({})", sol_list(gained), kinds.join(", "))
+    }
+}
+
+/// `sols 624`, or `none`.
+pub(crate) fn lost_text(lost: &[u32]) -> String {
+    if lost.is_empty() {
+        "none".into()
+    } else {
+        format!("sols {}", sol_list(lost))
+    }
+}
+
+/// Plans (distinct uplink sols) that commanded at least one of the run's drives.
+pub(crate) fn uplinks_with_drive_plans(o: &CampaignOutcome) -> usize {
+    let mut u: Vec<u32> = o
+        .sols
+        .iter()
+        .filter(|r| r.drove)
+        .map(|r| r.plan_uplink_sol)
+        .collect();
+    u.dedup();
+    u.len()
+}
+
+/// Hours the run's drives took.
+pub(crate) fn drive_hours(o: &CampaignOutcome) -> f64 {
+    o.sols.iter().map(|r| r.drive_time_s).sum::<f64>() / 3600.0
+}
+
 /// `403, 406`.
-pub(crate) fn sol_list(sols: &[u32]) -> String {
+fn sol_list(sols: &[u32]) -> String {
     sols.iter()
         .map(u32::to_string)
         .collect::<Vec<_>>()
@@ -651,17 +690,6 @@ pub fn against_ground(scenario: &Scenario, outcomes: &[CampaignOutcome]) -> Stri
         return String::new();
     };
     let cal = &scenario.campaign.calendar;
-    let plans = |o: &CampaignOutcome| -> usize {
-        let mut u: Vec<u32> = o
-            .sols
-            .iter()
-            .filter(|r| r.drove)
-            .map(|r| r.plan_uplink_sol)
-            .collect();
-        u.dedup();
-        u.len()
-    };
-    let hours = |o: &CampaignOutcome| o.sols.iter().map(|r| r.drive_time_s).sum::<f64>() / 3600.0;
     // A run that did not cover the segment needs more than the sols left in the calendar, so
     // "k fewer than ground" is still a bound when ground did not cover it.
     let segment = |o: &CampaignOutcome| {
@@ -713,32 +741,18 @@ pub fn against_ground(scenario: &Scenario, outcomes: &[CampaignOutcome]) -> Stri
         let t = &o.totals;
         let bt = &base.totals;
         let (gained, lost) = gained_lost(o, base);
-        let kinds = gained_kind_counts(&gained, cal);
         let _ = writeln!(s, "  {}:", o.strategy);
         if let Some(seg) = segment(o) {
             let _ = writeln!(s, "    study segment: {seg}");
         }
         let _ = writeln!(
             s,
-            "    drive sols: {} against {} ({:+}); gained {}{}; lost {}",
+            "    drive sols: {} against {} ({:+}); gained {}; lost {}",
             t.drive_sols,
             bt.drive_sols,
             i64::from(t.drive_sols) - i64::from(bt.drive_sols),
-            if gained.is_empty() {
-                "none".to_string()
-            } else {
-                format!("sols {}", sol_list(&gained))
-            },
-            if kinds.is_empty() {
-                String::new()
-            } else {
-                format!(" ({})", kinds.join(", "))
-            },
-            if lost.is_empty() {
-                "none".to_string()
-            } else {
-                format!("sols {}", sol_list(&lost))
-            }
+            gained_text(&gained, cal),
+            lost_text(&lost)
         );
         let _ = writeln!(
             s,
@@ -746,8 +760,8 @@ pub fn against_ground(scenario: &Scenario, outcomes: &[CampaignOutcome]) -> Stri
             t.distance_m,
             bt.distance_m,
             t.distance_m - bt.distance_m,
-            hours(o),
-            hours(base)
+            drive_hours(o),
+            drive_hours(base)
         );
         let _ = writeln!(
             s,
@@ -762,8 +776,8 @@ pub fn against_ground(scenario: &Scenario, outcomes: &[CampaignOutcome]) -> Stri
         let _ = writeln!(
             s,
             "    uplinks that needed a drive plan: {} against {}",
-            plans(o),
-            plans(base)
+            uplinks_with_drive_plans(o),
+            uplinks_with_drive_plans(base)
         );
     }
     s

@@ -118,17 +118,6 @@ pub(super) fn against_ground_table(
         return;
     };
     let cal = &scenario.campaign.calendar;
-    let plans = |o: &CampaignOutcome| -> usize {
-        let mut u: Vec<u32> = o
-            .sols
-            .iter()
-            .filter(|r| r.drove)
-            .map(|r| r.plan_uplink_sol)
-            .collect();
-        u.dedup();
-        u.len()
-    };
-    let hours = |o: &CampaignOutcome| o.sols.iter().map(|r| r.drive_time_s).sum::<f64>() / 3600.0;
     let segment = scenario.study_segment;
     let mut header: Vec<String> = vec!["Strategy".into()];
     if let Some(g) = segment {
@@ -176,19 +165,10 @@ pub(super) fn against_ground_table(
             });
         }
         let (gained, lost) = crate::report::gained_lost(o, base);
-        let kinds = crate::report::gained_kind_counts(&gained, cal);
         let gained_text = if is_base {
             "—".to_string()
-        } else if gained.is_empty() {
-            "none".to_string()
-        } else if kinds.is_empty() {
-            format!("sols {}", crate::report::sol_list(&gained))
         } else {
-            format!(
-                "sols {} ({})",
-                crate::report::sol_list(&gained),
-                kinds.join(", ")
-            )
+            crate::report::gained_text(&gained, cal)
         };
         row.extend([
             against(
@@ -201,18 +181,19 @@ pub(super) fn against_ground_table(
             gained_text,
             if is_base {
                 "—".to_string()
-            } else if lost.is_empty() {
-                "none".to_string()
             } else {
-                format!("sols {}", crate::report::sol_list(&lost))
+                crate::report::lost_text(&lost)
             },
             against(
                 format!("{:.1}", t.distance_m),
                 diff(format!("{:+.1}", t.distance_m - bt.distance_m)),
             ),
             against(
-                format!("{:.1}", hours(o)),
-                diff(format!("{:+.1}", hours(o) - hours(base))),
+                format!("{:.1}", crate::report::drive_hours(o)),
+                diff(format!(
+                    "{:+.1}",
+                    crate::report::drive_hours(o) - crate::report::drive_hours(base)
+                )),
             ),
             against(
                 t.no_path_faults.to_string(),
@@ -233,8 +214,12 @@ pub(super) fn against_ground_table(
                 )),
             ),
             against(
-                plans(o).to_string(),
-                diff(format!("{:+}", plans(o) as i64 - plans(base) as i64)),
+                crate::report::uplinks_with_drive_plans(o).to_string(),
+                diff(format!(
+                    "{:+}",
+                    crate::report::uplinks_with_drive_plans(o) as i64
+                        - crate::report::uplinks_with_drive_plans(base) as i64
+                )),
             ),
         ]);
         rows.push(row);
