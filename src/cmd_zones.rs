@@ -280,6 +280,16 @@ fn read_points(path: &Path) -> anyhow::Result<Vec<NamedPoint>> {
     parse_points(&text, path)
 }
 
+/// A CSV file's non-blank lines with their 1-based line numbers, after a UTF-8 byte-order mark.
+pub(crate) fn numbered_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
+    text.strip_prefix('\u{feff}')
+        .unwrap_or(text)
+        .lines()
+        .enumerate()
+        .map(|(i, l)| (i + 1, l))
+        .filter(|(_, l)| !l.trim().is_empty())
+}
+
 /// Parse points CSV text: a header naming `x_m`, `y_m` and optionally `name` (any order, each
 /// once, nothing else), then one row per point; blank lines are skipped. A row without a name
 /// (or an empty one) is called `point-<k>`, `k` counting data rows from 0.
@@ -288,12 +298,7 @@ fn read_points(path: &Path) -> anyhow::Result<Vec<NamedPoint>> {
 /// One line naming the file, the line and the column at fault.
 pub fn parse_points(text: &str, path: &Path) -> anyhow::Result<Vec<NamedPoint>> {
     let file = path.display();
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let mut lines = text
-        .lines()
-        .enumerate()
-        .map(|(i, l)| (i + 1, l))
-        .filter(|(_, l)| !l.trim().is_empty());
+    let mut lines = numbered_lines(text);
     let Some((header_line, header)) = lines.next() else {
         bail!(
             "{file}: empty file; expected a header row naming the columns x_m, y_m and optionally name"

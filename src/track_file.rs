@@ -66,12 +66,7 @@ fn lonlat(lon: f64, lat: f64, at: &str, file: &str) -> anyhow::Result<TrackPoint
 /// One line naming the file, the line and the column at fault.
 pub fn parse_csv(text: &str, path: &Path) -> anyhow::Result<Vec<TrackPoint>> {
     let file = path.display().to_string();
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let mut lines = text
-        .lines()
-        .enumerate()
-        .map(|(i, l)| (i + 1, l))
-        .filter(|(_, l)| !l.trim().is_empty());
+    let mut lines = crate::cmd_zones::numbered_lines(text);
     let expected_header = "a header row naming a lon and a lat column (lon_deg/lat_deg and \
                            longitude/latitude also do), degrees";
     let Some((header_line, header)) = lines.next() else {
@@ -154,30 +149,18 @@ pub fn parse_csv(text: &str, path: &Path) -> anyhow::Result<Vec<TrackPoint>> {
     Ok(points)
 }
 
-/// The JSON type of `v`, for messages that must not quote a foreign file.
-fn kind_of(v: &Value) -> &'static str {
-    match v {
-        Value::Null => "null",
-        Value::Bool(_) => "a boolean",
-        Value::Number(_) => "a number",
-        Value::String(_) => "a string",
-        Value::Array(_) => "an array",
-        Value::Object(_) => "an object",
-    }
-}
-
 /// The `type` member of a GeoJSON object.
 fn type_of<'a>(v: &'a Value, field: &str, file: &str) -> anyhow::Result<&'a str> {
     match v.get("type") {
         Some(Value::String(t)) => Ok(t),
         Some(other) => bail!(
             "{file}: {field}.type: expected a GeoJSON type name, got {}",
-            kind_of(other)
+            maps::json_kind(other)
         ),
         None if v.is_object() => bail!("{file}: {field}.type: expected a GeoJSON type, got none"),
         None => bail!(
             "{file}: {field}: expected a GeoJSON object, got {}",
-            kind_of(v)
+            maps::json_kind(v)
         ),
     }
 }
@@ -198,7 +181,7 @@ fn position(v: &Value, field: &str, file: &str) -> anyhow::Result<TrackPoint> {
             if v.is_array() {
                 "an array holding something other than numbers"
             } else {
-                kind_of(v)
+                maps::json_kind(v)
             }
         ),
     }

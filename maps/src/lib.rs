@@ -45,4 +45,4 @@ pub use memory_budget::MemoryBudget;
 pub use raster::{GeoTransform, Raster};
 pub use raster_io::{MapLayers, RasterError};
 pub use terrain::TerrainClass;
-pub use zone::{Clearance, Zone, ZoneError, ZoneHandle, ZoneKind, ZoneSet};
+pub use zone::{Clearance, Zone, ZoneError, ZoneHandle, ZoneKind, ZoneSet, json_kind};

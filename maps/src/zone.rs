@@ -65,6 +65,7 @@ mod union_boundary;
 mod validation;
 
 pub use error::ZoneError;
+pub use geojson_reader::json_kind;
 pub use offset::{ARC_STEP_RAD, polygon_rings_m};
 
 use crate::raster::GeoTransform;

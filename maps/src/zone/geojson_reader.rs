@@ -41,7 +41,7 @@ pub(super) fn read_zones(
     // Until the file shows a `type` member it may be any JSON file (a token, a key file):
     // what it holds is described, never quoted.
     let Value::Object(mut root) = root else {
-        return Err(not_collection("type", kind_of(&root).to_owned()));
+        return Err(not_collection("type", json_kind(&root).to_owned()));
     };
     match root.get("type") {
         Some(Value::String(t)) if t == "FeatureCollection" => {}
@@ -78,8 +78,10 @@ pub(super) fn read_zones(
         .collect()
 }
 
-/// What kind of JSON value `value` is, without any of its content.
-fn kind_of(value: &Value) -> &'static str {
+/// What kind of JSON value `value` is ("a number", "an object", …), without any of its content:
+/// for messages that must not quote a foreign file.
+#[must_use]
+pub fn json_kind(value: &Value) -> &'static str {
     match value {
         Value::Null => "null",
         Value::Bool(_) => "a boolean",
