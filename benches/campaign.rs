@@ -38,12 +38,12 @@ fn bench_compare(c: &mut Criterion) {
     let scenario = Scenario::load(&path).expect("bundled scenario loads");
     let strategies = scenario.strategies();
     group.bench_function("strategies", |b| {
-        b.iter(|| scenario.compare(&strategies, scenario.seed()))
+        b.iter(|| scenario.compare(&strategies, scenario.seeds()))
     });
     group.bench_function("compare_total", |b| {
         b.iter(|| {
             let s = Scenario::load(&path).expect("bundled scenario loads");
-            let runs = s.compare(&s.strategies(), s.seed());
+            let runs = s.compare(&s.strategies(), s.seeds());
             assert_eq!(runs.len(), 5);
             runs
         });

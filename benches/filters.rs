@@ -16,7 +16,7 @@
 //!   with a 30 m search radius and the default imaging; N = 1000 or 5000 particles drawn
 //!   (seed [`PF_SEED`]) from `Prior::from_uncertainty_disc(prior, 20 m)` — what
 //!   `localize_panorama` starts from — and one `ParticleFilter::update` (census with both
-//!   DEMs, default `MatchParams`) from a clone of that filter per iteration. `score_surface`
+//!   DEMs, default `MatchSettings`) from a clone of that filter per iteration. `score_surface`
 //!   alone over the same window shows how much of the update the census scores take.
 //! - `pf_resample`: `systematic_indices` of the weights the update leaves when it does not
 //!   resample (`resample_threshold` 0), with the fixed pointer offset [`RESAMPLE_U0`].
@@ -52,8 +52,8 @@ use localization::ekf::{
     CaseSettings, Ekf, ImuSample, MARS_RADIUS_M, NavigationFrame, RangeMeasurement, STATE_DIM,
     StateCovariance, Table1Case, filter_streams, simulate,
 };
-use localization::matcher::{MatchParams, OrbitalMap, RoverImages, score_surface};
-use localization::particle::{ParticleFilter, ParticleParams, Prior, systematic_indices};
+use localization::matcher::{MatchSettings, OrbitalMap, RoverImages, score_surface};
+use localization::particle::{ParticleFilter, ParticleSettings, Prior, systematic_indices};
 use serde_json::{Value, json};
 
 /// Seed of the EKF's drive and sensor streams (the seed `tests/ekf_filterpy.rs` checks).
@@ -336,7 +336,7 @@ fn bench_pf(c: &mut Criterion) {
     .expect("the benchmark case renders");
     let map = OrbitalMap::of(&orbital);
     let images = RoverImages::of(&rover);
-    let match_params = MatchParams::default();
+    let match_params = MatchSettings::default();
     let prior = Prior::from_uncertainty_disc(draws.prior_m, PRIOR_RADIUS_M);
     let off = |p: [f64; 2]| (p[0] - draws.truth_m[0]).hypot(p[1] - draws.truth_m[1]);
     println!(
@@ -351,9 +351,9 @@ fn bench_pf(c: &mut Criterion) {
     let dir = dump_dir();
     let mut prepared = Vec::new();
     for n in COUNTS {
-        let params = ParticleParams {
+        let params = ParticleSettings {
             particle_count: n,
-            ..ParticleParams::default()
+            ..ParticleSettings::default()
         };
         let fresh = ParticleFilter::new(&prior, params, PF_SEED).expect("valid prior and params");
         let (center, half) = update_window(&fresh, &map, &images);
@@ -380,7 +380,7 @@ fn bench_pf(c: &mut Criterion) {
         // The weights the update leaves when it does not resample.
         let mut weights_only = ParticleFilter::new(
             &prior,
-            ParticleParams {
+            ParticleSettings {
                 resample_threshold: 0.0,
                 ..params
             },

@@ -1,12 +1,12 @@
 //! Grid benchmarks B3 (keep-out growth: exact EDT + threshold) and B4 (A*, 8-connected,
-//! corner to corner), defined in PERFORMANCE.md §5 and reported in BENCHMARKS.md.
+//! corner to corner), reported in BENCHMARKS.md (docs/design.md, "How benchmarks are taken").
 //!
 //! # Problem instances
 //! All grids are square (`n × n`, n = 2000 and 4000) and generated here from fixed seeds:
 //! - **Keep-out mask** ([`blob_mask`], seed [`SEED_MASK`]): discs of integer radius uniform in
 //!   2..=20 cells, centres uniform over the grid, added until at least 5 % of the cells are
 //!   covered (ChaCha8).
-//! - **B3**: grow that mask by r = 10 cells (`sim::edt::grow`), and, for comparison with a
+//! - **B3**: grow that mask by r = 10 cells (`sim::grid::edt::grow`), and, for comparison with a
 //!   two-step peer, `squared_edt` followed by a separate threshold.
 //! - **B4 weights** ([`astar_weights`], seed [`SEED_COST`]): cost uniform in [1, 2) per cell,
 //!   `f32::INFINITY` on the keep-out mask, except within [`CORNER_CLEAR`] cells (Chebyshev) of
@@ -34,8 +34,8 @@ use criterion::{
 };
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use sim::astar::AStar;
-use sim::edt;
+use sim::grid::astar::AStar;
+use sim::grid::edt;
 
 /// Grid sizes (cells per side).
 const SIZES: [usize; 2] = [2000, 4000];

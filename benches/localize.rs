@@ -1,6 +1,6 @@
 //! Localization benchmarks B1 (exact masked census Hamming scores at every offset) and B2 (one
-//! full `localization::matcher::localize` call), defined in PERFORMANCE.md §5 and reported in
-//! BENCHMARKS.md ("Localization: exact census scores").
+//! full `localization::matcher::localize` call), reported in BENCHMARKS.md
+//! (docs/design.md, "How benchmarks are taken") ("Localization: exact census scores").
 //!
 //! # Problem instances (flight size, seeded)
 //! - **B1**: a 480² map of uniform random bytes (ChaCha8, seed [`SEED_B1`]), all valid; the
@@ -34,7 +34,7 @@ use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use localization::census::{CensusImage, census_transform, hamming_scores, hamming_scores_fft};
-use localization::matcher::{MatchParams, OrbitalMap, RoverImages, localize};
+use localization::matcher::{MatchSettings, OrbitalMap, RoverImages, localize};
 use localization::synthetic::sinusoid_texture;
 use maps::{GeoTransform, Raster};
 use rand::{RngExt, SeedableRng};
@@ -192,7 +192,7 @@ fn bench_b2(c: &mut Criterion) {
         dem: Some(&dem),
     };
     let prior = [truth[0] + 11.5, truth[1] - 7.25];
-    let params = MatchParams::default();
+    let params = MatchSettings::default();
     let m = localize(&orbital, &rover, prior, &params).expect("B2 localize");
     let err_px = (m.position_m[0] - truth[0]).hypot(m.position_m[1] - truth[1]) / 0.25;
     println!(

@@ -55,12 +55,12 @@ fn rapid_traverse_slip_profile(dir: &Path) -> Scenario {
 }
 
 fn sol_rows(scenario: &Scenario, runs: u64) -> Vec<sweep::rows::SolRow> {
-    let seg = sweep::engine::segment_of(scenario);
+    let seg = scenario.study_segment;
     let mut rows = Vec::new();
     for run in 0..runs {
-        let seed = sim::seeds::run_seed(scenario.seed(), run);
+        let seeds = sim::seeds::RunSeeds::new(scenario.seed(), run);
         for s in scenario.strategies() {
-            rows.extend(sweep::rows::rows_of(run, seed, &scenario.run(s, seed), seg).1);
+            rows.extend(sweep::rows::rows_of(run, seeds.master(), &scenario.run(s, seeds), seg).1);
         }
     }
     rows

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Peers for B1 (exact masked census Hamming scores at every offset, PERFORMANCE.md §5).
+"""Peers for B1 (exact masked census Hamming scores at every offset, BENCHMARKS.md).
 
 Loads the instance `cargo bench --bench localize` dumps with SOLSIM_CENSUS_DUMP=<dir>
 (`template_codes.npy`, `template_valid.npy`, `map_codes.npy`, `map_valid.npy`, uint8 census

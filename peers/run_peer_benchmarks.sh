@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs solsim's benchmarks and their peers in ONE job on this machine and prints ratio tables
-# (only ratios taken side by side are meaningful on these noisy machines; PERFORMANCE.md §5).
+# (only ratios taken side by side are meaningful on these noisy machines; docs/design.md,
+# "How benchmarks are taken").
 #
 # Usage: peers/run_peer_benchmarks.sh [SECTION...]     (default: all sections)
 # Sections: grid (B3 keep-out growth, B4 A*), campaign (the whole rapid-traverse compare),

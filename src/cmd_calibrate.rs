@@ -7,7 +7,7 @@ use anyhow::Context as _;
 use clap::{Args, Subcommand};
 use maps::MemoryBudget;
 use study::Scenario;
-use study::calibrate::{VoCalibration, calibrate_drive_rate, calibrate_vo};
+use study::calibrate::{calibrate_drive_rate, calibrate_vo};
 
 /// `solsim calibrate`.
 #[derive(Subcommand)]
@@ -57,92 +57,21 @@ pub fn run(
     budget: MemoryBudget,
     out: &mut impl Write,
 ) -> anyhow::Result<()> {
-    match cmd {
+    let (json, text) = match cmd {
         CalibrateCommand::Vo(a) => {
             let scenario = Scenario::load_within(&a.scenario, budget)?;
             let c = calibrate_vo(&scenario, a.runs)?;
-            if a.json {
-                print_json(&c, out)?;
-            } else {
-                print_vo(&c, out)?;
-            }
-            Ok(())
+            (a.json.then(|| serde_json::to_string_pretty(&c)), c.text())
         }
         CalibrateCommand::DriveRate(a) => {
             let scenario = Scenario::load_within(&a.scenario, budget)?;
             let c = calibrate_drive_rate(&scenario, a.runs)?;
-            if a.json {
-                print_json(&c, out)?;
-            } else {
-                writeln!(
-                    out,
-                    "{} — drive rate calibration over {} ground re-simulations per step",
-                    c.scenario, c.runs
-                )?;
-                writeln!(
-                    out,
-                    "record: {:.1} m per drive sol",
-                    c.record_m_per_drive_sol
-                )?;
-                writeln!(
-                    out,
-                    "at the scenario's rate, {:.1} m/h: ground drives {:.1} m per drive sol",
-                    c.scenario_rate_m_per_h, c.ground_m_per_drive_sol_at_scenario_rate
-                )?;
-                writeln!(
-                    out,
-                    "calibrated rate: {:.1} m/h (ground then drives {:.1} m per drive sol)",
-                    c.calibrated_rate_m_per_h, c.ground_m_per_drive_sol_at_calibrated_rate
-                )?;
-            }
-            Ok(())
+            (a.json.then(|| serde_json::to_string_pretty(&c)), c.text())
         }
+    };
+    match json {
+        Some(json) => writeln!(out, "{}", json.context("serialising the calibration")?)?,
+        None => write!(out, "{text}")?,
     }
-}
-
-fn print_json(c: &impl serde::Serialize, out: &mut impl Write) -> anyhow::Result<()> {
-    let text = serde_json::to_string_pretty(c).context("serialising the calibration")?;
-    writeln!(out, "{text}")?;
     Ok(())
-}
-
-fn print_vo(c: &VoCalibration, out: &mut impl Write) -> std::io::Result<()> {
-    let pct = |x: f64| 100.0 * x;
-    writeln!(
-        out,
-        "{} — VO failure calibration over {} ground re-simulations",
-        c.scenario, c.runs
-    )?;
-    writeln!(
-        out,
-        "record: {:.3} m without VO in {:.1} m ({:.4} % of distance)",
-        c.record_novo_m,
-        c.record_distance_m,
-        pct(c.record_novo_m / c.record_distance_m)
-    )?;
-    writeln!(
-        out,
-        "terrain under the re-simulated drives: sand {:.1} %, soil {:.1} %, bedrock {:.1} %",
-        pct(c.terrain_share.sand),
-        pct(c.terrain_share.soil),
-        pct(c.terrain_share.bedrock)
-    )?;
-    writeln!(
-        out,
-        "relative failure rates (judgement): sand {}, soil {}, bedrock {}",
-        c.relative.sand, c.relative.soil, c.relative.bedrock
-    )?;
-    writeln!(
-        out,
-        "solved VO failure probability per step on soil: {:.3e} (shipped: {:.3e}, sim::errors::VO_FAILURE_SOIL)",
-        c.vo_failure_soil, c.shipped_vo_failure_soil
-    )?;
-    writeln!(
-        out,
-        "with the shipped value, metres without VO over the record's distance: {:.3} m [95 % interval {:.3}, {:.3}] (record {:.3} m)",
-        c.simulated_novo_m,
-        c.simulated_novo_interval_m[0],
-        c.simulated_novo_interval_m[1],
-        c.record_novo_m
-    )
 }

@@ -14,7 +14,7 @@ use maps::MemoryBudget;
 use study::record::{TraverseLayer, parse_sol_range};
 use study::record_import::{ImportOptions, file_names, import};
 
-use crate::output_set::OutputSet;
+use outputs::output_set::OutputSet;
 
 /// The bundled traverse layer, relative to the repository.
 pub const BUNDLED_TRAVERSE: &str = "data/m20/M20_traverse.json";
@@ -153,8 +153,7 @@ fn import_cmd(a: &ImportArgs, budget: MemoryBudget, out: &mut impl Write) -> any
         &format!("{map_dir}/recipe.toml"),
         imported.recipe_toml.as_bytes(),
     )?;
-    // Passages: placed where the replay, run without them, starts each sol (the rule of
-    // `study::record_import`).
+    // Passages: placed where the replay, run without them, starts each sol.
     set.write(&scenario_file, imported.scenario_toml.as_bytes())?;
     set.write(
         &zones_file,
@@ -165,63 +164,16 @@ fn import_cmd(a: &ImportArgs, budget: MemoryBudget, out: &mut impl Write) -> any
         .unwrap_or(&staging_map)
         .join(&scenario_file);
     let bare = study::Scenario::load_within(&staged, budget)?;
-    let replay = bare.run_index(sim::Strategy::Replay, 0);
-    let route_cum = study::record_import::along(&imported.route_m);
-    let mut starts = vec![0.0];
-    starts.extend(replay.sols.iter().map(|s| {
-        study::record_import::project_onto(&imported.route_m, &route_cum, s.end_position_m)
-    }));
-    let (zones, passages) = imported.place_passages(&starts);
+    let (zones, passages) = imported.place_passages(&imported.passage_starts(&bare));
     set.write(&zones_file, zones.as_bytes())?;
     let scenario_path = set.write(&scenario_file, imported.scenario_toml.as_bytes())?;
-    let mut report = String::new();
-    for f in &imported.findings {
-        report.push_str(f);
-        report.push('\n');
-    }
-    report.push_str(&format!("{passages} passages placed by the import rule\n"));
-    set.write("import-report.txt", report.as_bytes())?;
+    set.write(
+        "import-report.txt",
+        imported.report_text(passages).as_bytes(),
+    )?;
     set.commit()?;
-
-    let drove = imported.sols.iter().filter(|x| x.distance_m > 0.0).count();
-    let total: f64 = imported.sols.iter().map(|x| x.distance_m).sum();
-    writeln!(
-        out,
-        "wrote {} (+ {zones_file}, {map_dir}/): sols {}-{} of {}: {drove} drive sols, {total:.1} m; route {:.0} m; AutoNav rate {} m/h (the record's mean speed; each historic drive sol drives at its own)",
-        scenario_path.display(),
-        opts.sols.start(),
-        opts.sols.end(),
-        layer.name,
-        imported.route_length_m,
-        imported.drive_rate_m_per_h
-    )?;
-    writeln!(
-        out,
-        "{:>5}  {:>9}  {:<13}  source / why not",
-        "sol", "metres", "window LMST"
-    )?;
-    for x in &imported.sols {
-        let window = x.window.as_ref().map_or_else(String::new, |(s, e)| {
-            format!("{}-{e}", s.as_deref().unwrap_or("?"))
-        });
-        let why = if x.distance_m > 0.0 {
-            &x.source
-        } else {
-            &x.note
-        };
-        writeln!(
-            out,
-            "{:>5}  {:>9.2}  {window:<13}  {why}",
-            x.sol, x.distance_m
-        )?;
-    }
-    for f in &imported.findings {
-        writeln!(out, "note: {f}")?;
-    }
-    writeln!(
-        out,
-        "note: {passages} passages placed by the import rule (a modelling choice: the record has no zones)"
-    )?;
+    let summary = imported.summary(&layer.name, &scenario_path, &zones_file, map_dir, passages);
+    write!(out, "{summary}")?;
     Ok(())
 }
 
@@ -231,77 +183,12 @@ fn baseline_cmd(
     out: &mut impl Write,
 ) -> anyhow::Result<()> {
     let scenario = study::Scenario::load_within(&a.scenario, budget)?;
-    if !scenario.has_history {
-        anyhow::bail!(
-            "{}: sols: expected a scenario with a record (historic_distance_m per sol), got none",
-            a.scenario.display()
-        );
-    }
+    study::baseline::require_record(&scenario, &a.scenario)?;
     let b = study::baseline::ground_vs_record(&scenario, a.runs);
     if a.json {
         writeln!(out, "{}", serde_json::to_string_pretty(&b)?)?;
-        return Ok(());
-    }
-    writeln!(
-        out,
-        "ground beside the record: {} ({} runs of ground; run 0 in the table)",
-        b.scenario, b.runs
-    )?;
-    writeln!(
-        out,
-        "{:>5}  {:<14}  {:>6}  {:>8}  {:>8}  {:>6}  {:<11}  rule",
-        "sol", "planned (PT)", "plan", "record m", "ground m", "drove", "who"
-    )?;
-    for r in &b.rows {
-        let plan = match (r.uplink, r.restricted) {
-            (true, true) => "restr",
-            (true, false) => "uplink",
-            (false, _) => "",
-        };
-        let rule = r
-            .ground_reason
-            .clone()
-            .or_else(|| r.calendar_rule.clone())
-            .unwrap_or_else(|| "drives".to_owned());
-        writeln!(
-            out,
-            "{:>5}  {:<14}  {plan:>6}  {:>8.1}  {:>8.1}  {:>5.0}%  {:<11}  {rule}",
-            r.sol,
-            r.planning_day.as_deref().unwrap_or(""),
-            r.record_m,
-            r.ground_m,
-            100.0 * r.ground_drove_share,
-            r.agreement.name()
-        )?;
-    }
-    use study::baseline::Agreement;
-    let list = |v: Vec<u32>| {
-        if v.is_empty() {
-            "none".to_owned()
-        } else {
-            v.iter()
-                .map(ToString::to_string)
-                .collect::<Vec<_>>()
-                .join(", ")
-        }
-    };
-    writeln!(out, "both drove: {}", list(b.sols(Agreement::Both)))?;
-    writeln!(out, "record only: {}", list(b.sols(Agreement::RecordOnly)))?;
-    writeln!(out, "model only: {}", list(b.sols(Agreement::ModelOnly)))?;
-    for r in b
-        .rows
-        .iter()
-        .filter(|r| matches!(r.agreement, Agreement::RecordOnly | Agreement::ModelOnly))
-    {
-        writeln!(
-            out,
-            "disagreement on sol {}: {} (record {:.1} m, ground {:.1} m): {}",
-            r.sol,
-            r.agreement.name(),
-            r.record_m,
-            r.ground_m,
-            r.ground_reason.as_deref().unwrap_or("ground drove")
-        )?;
+    } else {
+        write!(out, "{}", b.text())?;
     }
     Ok(())
 }

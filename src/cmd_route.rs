@@ -1,32 +1,32 @@
 //! `solsim route import TRACK --out SCENARIO.toml`: a scenario of your own from a track in Mars
-//! longitude and latitude ([`crate::track_file`]), on a procedural map placed around it
-//! ([`study::starter`]). `solsim init` writes the same files for a bundled example track.
+//! longitude and latitude ([`study::track_file`]), on a procedural map placed around it
+//! ([`study::starter`], [`study::starter_output`]). `solsim init` writes the same files for a
+//! bundled example track.
 //!
 //! What is written, beside `SCENARIO.toml`: `SCENARIO.map/` with the map's GeoTIFFs
 //! (appearance, DEM, terrain classes; the Jezero equirectangular CRS through the track's first
 //! point), its `recipe.toml` and the zones file `zones.geojson`. The folder is one output set
 //! ([`OutputSet`]: written aside and swapped into place whole); the scenario file is written
-//! last, to a temporary file renamed into place ([`crate::report::write_atomic`]), so a
+//! last, to a temporary file renamed into place ([`outputs::run_files::write_atomic`]), so a
 //! scenario file never names a map that is not there, and a failure leaves nothing half
 //! written.
 //!
 //! Before anything is put in place the scenario is loaded from the staged files and checked as
 //! `solsim validate` checks it. A procedural crater can swallow a waypoint (a leg with no path
 //! even at r = 0); the map is then generated again with the next seed, up to
-//! [`MAP_SEED_ATTEMPTS`] seeds, and the seed used is printed and written in the recipe.
+//! [`study::starter_output::MAP_SEED_ATTEMPTS`] seeds, and the seed used is printed and written
+//! in the recipe.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context as _, bail};
+use anyhow::Context as _;
 use clap::{Args, Subcommand};
 use maps::MemoryBudget;
-use study::starter::{Starter, StarterOptions, TrackPoint};
+use study::starter::TrackPoint;
+use study::starter_output::{StarterFiles, StarterRequest};
 
-use crate::output_set::OutputSet;
-
-/// Map seeds tried, from the scenario's seed on, before the route is reported as blocked.
-pub const MAP_SEED_ATTEMPTS: u64 = 8;
+use outputs::output_set::OutputSet;
 
 /// `solsim route`.
 #[derive(Subcommand)]
@@ -105,32 +105,13 @@ pub struct StarterArgs {
 pub fn run(cmd: &RouteCommand, budget: MemoryBudget, out: &mut impl Write) -> anyhow::Result<()> {
     match cmd {
         RouteCommand::Import(a) => {
-            let track = crate::track_file::read_track(&a.track)?;
+            let track = study::track_file::read_track(&a.track)?;
             let source = format!("the track {}", a.track.display());
             write_starter(
-                &a.track, &track, &source, false, &a.out, &a.starter, budget, out,
+                &a.track, &track, source, false, &a.out, &a.starter, budget, out,
             )
         }
     }
-}
-
-/// The companions of scenario file `scenario`: its map folder (`NAME.map/`).
-///
-/// # Errors
-/// A path that does not end in `.toml`.
-pub fn map_dir_of(scenario: &Path) -> anyhow::Result<PathBuf> {
-    let is_toml = scenario
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("toml"));
-    let Some(stem) = scenario.file_stem().filter(|_| is_toml) else {
-        bail!(
-            "{}: expected a scenario file name ending in .toml",
-            scenario.display()
-        );
-    };
-    let mut name = stem.to_os_string();
-    name.push(".map");
-    Ok(scenario.with_file_name(name))
 }
 
 /// Place `track` (from `track_path`) on a map and write the scenario `scenario` and its map
@@ -142,76 +123,32 @@ pub fn map_dir_of(scenario: &Path) -> anyhow::Result<PathBuf> {
 pub fn write_starter(
     track_path: &Path,
     track: &[TrackPoint],
-    source: &str,
+    source: String,
     example_keep_out: bool,
     scenario: &Path,
     a: &StarterArgs,
     budget: MemoryBudget,
     out: &mut impl Write,
 ) -> anyhow::Result<()> {
-    let map_dir = map_dir_of(scenario)?;
-    if !study::starter::MAP_MARGIN_RANGE_M.contains(&a.map_margin_m) {
-        bail!(
-            "--map-margin-m: expected {}, got {}",
-            study::starter::MAP_MARGIN_EXPECTED,
-            a.map_margin_m
-        );
-    }
-    let name = match &a.name {
-        Some(n) => {
-            study::scenario::check_name(n).map_err(|e| anyhow::anyhow!("--name: expected {e}"))?;
-            n.clone()
-        }
-        None => {
-            let stem = scenario
-                .file_stem()
-                .map(|s| s.to_string_lossy().into_owned())
-                .unwrap_or_default();
-            study::scenario::check_name(&stem).map_err(|e| {
-                anyhow::anyhow!(
-                    "{}: the file name makes the scenario name: expected {e} (or give --name)",
-                    scenario.display()
-                )
-            })?;
-            stem
-        }
+    let request = StarterRequest {
+        force: a.force,
+        name: a.name.clone(),
+        seed: a.seed,
+        map_margin_m: a.map_margin_m,
+        first_sol: a.first_sol,
+        source,
+        example_keep_out,
     };
-    let mut options = StarterOptions::new(&name, source);
-    options.first_sol = a.first_sol;
-    options.seed = a.seed.unwrap_or(u64::from(a.first_sol));
-    options.map_margin_m = a.map_margin_m;
-    options.example_keep_out = example_keep_out;
-    let starter = Starter::new(track_path, track, &options, budget)?;
-
-    // Nothing is replaced without --force; with it, the map folder only if solsim wrote it.
-    for p in [scenario, map_dir.as_path()] {
-        if p.symlink_metadata().is_ok() && !a.force {
-            bail!(
-                "{}: expected a new file, but it exists; pass --force to replace it",
-                p.display()
-            );
-        }
-    }
-    if scenario.is_dir() {
-        bail!("{}: expected a file, found a directory", scenario.display());
-    }
-    OutputSet::check(&map_dir)?;
-    let map_name = map_dir
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-
+    let files = StarterFiles::plan(scenario, track_path, track, &request, budget)?;
+    let (starter, map_dir) = (&files.starter, &files.map_dir);
+    OutputSet::check(map_dir)?;
     let mut rejected: Vec<String> = Vec::new();
     let mut placed = None;
-    for attempt in 0..MAP_SEED_ATTEMPTS {
-        let map_seed = options.seed.wrapping_add(attempt);
+    for map_seed in files.map_seeds() {
         let recipe_text = starter.recipe_toml(map_seed);
-        let recipe = study::recipe::recipe_from_toml_str(
-            &map_dir.join("recipe.toml"),
-            &recipe_text,
-            budget,
-        )?;
-        let set = OutputSet::begin(&map_dir)?;
+        let recipe_path = map_dir.join("recipe.toml");
+        let recipe = study::recipe::recipe_from_toml_str(&recipe_path, &recipe_text, budget)?;
+        let set = OutputSet::begin(map_dir)?;
         let progress = crate::progress::Progress::new(
             false,
             "route import: map",
@@ -228,12 +165,8 @@ pub fn write_starter(
         set.write("recipe.toml", recipe_text.as_bytes())?;
         set.write("zones.geojson", starter.zones_geojson.as_bytes())?;
         // The scenario as `validate` sees it, from the staged files.
-        set.write(
-            ".check.toml",
-            starter
-                .scenario_toml(".", "zones.geojson", map_seed)
-                .as_bytes(),
-        )?;
+        let check_toml = starter.scenario_toml(".", "zones.geojson", map_seed);
+        set.write(".check.toml", check_toml.as_bytes())?;
         let check = staging.join(".check.toml");
         let (_, findings) = study::Scenario::inspect_within(&check, budget)?;
         std::fs::remove_file(&check).with_context(|| format!("{}", check.display()))?;
@@ -250,75 +183,9 @@ pub fn write_starter(
         }
         // Dropped uncommitted: the staging folder goes, the target stays as it was.
     }
-    let Some(map_seed) = placed else {
-        bail!(
-            "{}: the procedural maps of seeds {}..={} all block the route ({}); move the points, or try another --seed",
-            track_path.display(),
-            options.seed,
-            options.seed.wrapping_add(MAP_SEED_ATTEMPTS - 1),
-            rejected.join("; ")
-        );
-    };
-    crate::report::write_atomic(
-        scenario,
-        starter
-            .scenario_toml(&map_name, &format!("{map_name}/zones.geojson"), map_seed)
-            .as_bytes(),
-    )
-    .with_context(|| format!("{}: cannot write the scenario", scenario.display()))?;
-
-    let [w, h] = starter.map_px;
-    let r = starter.resolution_m_per_px;
-    writeln!(
-        out,
-        "wrote {} (+ {}/: map, recipe.toml, zones.geojson): {} waypoints, {:.0} m of route from {source}",
-        scenario.display(),
-        map_dir.display(),
-        starter.route_m.len(),
-        starter.route_length_m,
-    )?;
-    writeln!(
-        out,
-        "  map: {:.0} × {:.0} m at {r} m/px, {} m around the route, procedural (seed {map_seed}{}); CRS {}",
-        w as f64 * r,
-        h as f64 * r,
-        options.map_margin_m,
-        if rejected.is_empty() {
-            String::new()
-        } else {
-            format!(
-                "; seed{} {} put a waypoint where the map blocks it",
-                if rejected.len() == 1 { "" } else { "s" },
-                (options.seed..map_seed)
-                    .map(|s| s.to_string())
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            )
-        },
-        starter.crs.name()
-    )?;
-    if (starter.easting_scale - 1.0).abs() > 0.01 {
-        writeln!(
-            out,
-            "  note: the track lies far from 18.4663° N, where the projection is true to scale: east-west map metres are {:.3} ground metres",
-            1.0 / starter.easting_scale
-        )?;
-    }
-    writeln!(
-        out,
-        "  calendar: Mars 2020 sols {}-{}, computed (uplinks, weekends, restricted sols); zones: {}",
-        starter.sols.start(),
-        starter.sols.end(),
-        if example_keep_out {
-            "one example keep-out"
-        } else {
-            "none yet (add keep-outs to zones.geojson)"
-        }
-    )?;
-    let s = scenario.display();
-    writeln!(out, "next:")?;
-    writeln!(out, "  solsim validate {s}")?;
-    writeln!(out, "  solsim compare {s}")?;
-    writeln!(out, "  solsim compare {s} --runs 100 --report")?;
+    let map_seed = placed.ok_or_else(|| files.blocked(track_path, &rejected))?;
+    outputs::run_files::write_atomic(scenario, files.scenario_toml(map_seed).as_bytes())
+        .with_context(|| format!("{}: cannot write the scenario", scenario.display()))?;
+    write!(out, "{}", files.summary(map_seed, rejected.len()))?;
     Ok(())
 }

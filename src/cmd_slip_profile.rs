@@ -1,14 +1,15 @@
 //! `solsim slip-profile`: measure the slip-versus-slope tables with the rapier rover and write
-//! them with their figure.
+//! them with their figure (provenance and table: [`study::slip_profile`]).
 
 use std::io::Write;
 use std::path::PathBuf;
 
-use sim::physics::RoverBody;
-use sim::slip_profile::{ProfileSettings, SlipProfile};
+use sim::rover::physics::RoverBody;
+use sim::rover::slip_profile::{ProfileSettings, SlipProfile};
+use study::slip_profile::{provenance, table};
 
-use crate::output_set::OutputSet;
 use crate::progress::Progress;
+use outputs::output_set::OutputSet;
 
 /// Arguments of `solsim slip-profile`.
 #[derive(clap::Args, Debug)]
@@ -29,24 +30,6 @@ pub struct SlipProfileArgs {
     /// Print the table as JSON instead of text.
     #[arg(long)]
     pub json: bool,
-}
-
-/// What produced a table: the comment lines of its CSV.
-#[must_use]
-pub fn provenance(settings: &ProfileSettings) -> String {
-    let body = RoverBody::default();
-    format!(
-        "solsim slip-profile {}: the rapier rover (six wheels, {:.1} kg, wheel radius {} m, width {} m) \
-         driving at {} m/s for {} s per run (slip over the second half)\n\
-         soils: sim::physics::soil (sand: Wong dry sand; soil: Wong sandy loam; bedrock: rigid, mu 0.8)\n\
-         slip = 1 - progress / commanded; closed_form_slip = the same soil model's steady state (up and down only)",
-        env!("CARGO_PKG_VERSION"),
-        body.mass_kg(),
-        body.wheel_radius_m,
-        body.wheel_width_m,
-        settings.speed_m_per_s,
-        settings.duration_s,
-    )
 }
 
 fn check(name: &str, value: f64, lo: f64, hi: f64) -> anyhow::Result<()> {
@@ -77,7 +60,7 @@ pub fn run(args: &SlipProfileArgs, stdout: &mut dyn Write) -> anyhow::Result<()>
     let profile = SlipProfile::measure(&RoverBody::default(), &settings, &|| progress.inc())?;
     progress.finish();
     let csv = profile.to_csv(&provenance(&settings));
-    let svg = crate::figures::slip_profile_svg(&profile)?;
+    let svg = outputs::figures::slip_profile_svg(&profile)?;
     let json = serde_json::to_string_pretty(&profile)?;
     let set = OutputSet::begin(&args.out)?;
     set.write("slip_profile.csv", csv.as_bytes())?;
@@ -95,37 +78,4 @@ pub fn run(args: &SlipProfileArgs, stdout: &mut dyn Write) -> anyhow::Result<()>
         )?;
     }
     Ok(())
-}
-
-/// The text table: slip (%) per slope, one column per terrain class and heading.
-#[must_use]
-pub fn table(profile: &SlipProfile) -> String {
-    use maps::TerrainClass;
-    use sim::slip_profile::ProfileHeading;
-    let mut s = String::from("slip % by slope (up / cross / down); 100 = no progress\n");
-    s.push_str("slope_deg");
-    for t in TerrainClass::ALL {
-        s.push_str(&format!("  {:>22}", t.name()));
-    }
-    s.push('\n');
-    let slopes: Vec<f64> = profile
-        .curve(TerrainClass::Sand, ProfileHeading::Up)
-        .iter()
-        .map(|p| p.0)
-        .collect();
-    for (k, slope) in slopes.iter().enumerate() {
-        s.push_str(&format!("{slope:>9}"));
-        for t in TerrainClass::ALL {
-            let cell: Vec<String> = ProfileHeading::ALL
-                .iter()
-                .map(|&h| {
-                    let v = profile.curve(t, h).get(k).map_or(f64::NAN, |p| p.1);
-                    format!("{:>6.1}", 100.0 * v.min(1.0))
-                })
-                .collect();
-            s.push_str(&format!("  {}", cell.join(" ")));
-        }
-        s.push('\n');
-    }
-    s
 }

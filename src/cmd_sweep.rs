@@ -2,6 +2,9 @@
 //! strategies, write `runs.parquet`, `sols.parquet`, `summary.json` and `manifest.json`, print
 //! the rates, spreads and paired differences; `sweep merge` joins shard directories;
 //! `sweep slurm` prints a Slurm job-array submit script.
+//!
+//! This module holds the arguments and their checks; the engine is the [`sweep`] crate, what
+//! is printed [`outputs::sweep_text`], the script [`outputs::slurm_script`].
 
 use std::fmt::Write as _;
 use std::io::Write;
@@ -13,11 +16,12 @@ use anyhow::Context as _;
 use clap::{Args, Subcommand};
 use maps::MemoryBudget;
 use maps::input_file::{first_unsafe_char, printable};
+use outputs::slurm_script::SlurmJob;
+use outputs::sweep_text::{SweepJson, merge_line, sweep_table};
 use sim::Strategy;
 use study::Scenario;
 use study::error::{MAX_EXCERPT_CHARS, excerpt};
-use sweep::engine::{DEFAULT_CHUNK_RUNS, Shard, Summary, SweepResult, SweepSpec};
-use sweep::summary::{Figure, RateKind, Statistics};
+use sweep::engine::{DEFAULT_CHUNK_RUNS, Shard, SweepSpec};
 
 /// `solsim sweep`.
 #[derive(Args)]
@@ -186,19 +190,6 @@ fn spec(what: &SweepWhat, scenario: &Scenario) -> anyhow::Result<SweepSpec> {
     Ok(spec)
 }
 
-/// Runs the sweep `spec` in memory, with progress on stderr as a sweep shows it (labelled
-/// `compare`), and returns its summary: what `solsim compare --runs N` reports. Call
-/// [`SweepSpec::validate`] first.
-#[must_use]
-pub fn summary_in_memory(scenario: &Scenario, spec: &SweepSpec) -> Summary {
-    let progress = Progress::new(false, "compare", "runs", 0);
-    let summary = sweep::engine::summary_in_memory(scenario, spec, &|done, total| {
-        progress.update(done, total);
-    });
-    progress.finish();
-    summary
-}
-
 fn sweep(a: &SweepRunArgs, budget: MemoryBudget, stdout: &mut dyn Write) -> anyhow::Result<()> {
     let path = a.scenario.as_deref().unwrap_or(Path::new(""));
     let started = Instant::now();
@@ -239,7 +230,7 @@ fn sweep(a: &SweepRunArgs, budget: MemoryBudget, stdout: &mut dyn Write) -> anyh
         write!(
             stdout,
             "{}",
-            report(&result, &scenario, secs, pool.current_num_threads())
+            sweep_table(&result, &scenario, secs, pool.current_num_threads())
         )?;
     }
     Ok(())
@@ -257,120 +248,9 @@ fn merge(a: &MergeArgs, stdout: &mut dyn Write) -> anyhow::Result<()> {
         };
         writeln!(stdout, "{}", serde_json::to_string_pretty(&doc)?)?;
     } else if !a.quiet {
-        writeln!(
-            stdout,
-            "merged {} into {}/ ({} × {})",
-            plural(a.dirs.len() as u64, "shard directory").replace("directorys", "directories"),
-            a.out.display(),
-            plural(result.manifest.runs, "run"),
-            plural(result.manifest.strategies.len() as u64, "strategy")
-        )?;
+        writeln!(stdout, "{}", merge_line(a.dirs.len(), &a.out, &result))?;
     }
     Ok(())
-}
-
-/// A file a command wrote, as its `--json` describes it.
-#[derive(serde::Serialize)]
-pub struct WrittenFile {
-    /// Name inside the output directory.
-    pub file: String,
-    /// Size, bytes.
-    pub bytes: u64,
-    /// SHA-256 of its bytes, hex, where the command records it (a sweep's manifest).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub sha256: Option<String>,
-}
-
-impl WrittenFile {
-    /// `dir/file`'s size as written, with `sha256` if known.
-    ///
-    /// # Errors
-    /// The file cannot be read (it was just written: a race with something else).
-    pub fn of(dir: &Path, file: &str, sha256: Option<String>) -> anyhow::Result<Self> {
-        let path = dir.join(file);
-        let bytes = std::fs::metadata(&path)
-            .with_context(|| format!("{}: cannot read what was written", path.display()))?
-            .len();
-        Ok(WrittenFile {
-            file: file.to_owned(),
-            bytes,
-            sha256,
-        })
-    }
-}
-
-/// `sweep --json` and `sweep merge --json`: what the command wrote and the statistics.
-#[derive(serde::Serialize)]
-struct SweepJson<'a> {
-    /// The output directory.
-    dir: String,
-    /// `sweep merge`: the shard directories, as given.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    merged_from: Option<Vec<String>>,
-    scenario: &'a sweep::manifest::ScenarioId,
-    seed: u64,
-    /// Run indices 0..runs of the whole sweep.
-    runs: u64,
-    /// The run indices this directory holds, [first, end).
-    run_range: [u64; 2],
-    shard: Option<sweep::manifest::ShardInfo>,
-    strategies: &'a [String],
-    baseline: Option<&'a str>,
-    /// Run indices simulated by this command (`sweep`).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    runs_run: Option<u64>,
-    /// Run indices found committed by an interrupted sweep (`sweep --resume`).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    runs_resumed: Option<u64>,
-    /// The directory held the complete sweep already (`sweep --resume`).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    already_complete: Option<bool>,
-    /// Wall time, seconds (`sweep`).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    seconds: Option<f64>,
-    /// Worker threads (`sweep`).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    threads: Option<usize>,
-    /// Every file in the directory: the outputs with their SHA-256, then manifest.json.
-    files: Vec<WrittenFile>,
-    /// As in summary.json.
-    statistics: &'a Statistics,
-}
-
-impl<'a> SweepJson<'a> {
-    fn of(r: &'a SweepResult) -> anyhow::Result<Self> {
-        let m = &r.manifest;
-        let mut files = m
-            .files
-            .iter()
-            .map(|(name, sha)| WrittenFile::of(&r.dir, name, Some(sha.clone())))
-            .collect::<anyhow::Result<Vec<_>>>()?;
-        files.push(WrittenFile::of(&r.dir, sweep::manifest::MANIFEST, None)?);
-        let range = m.shard.map_or([0, m.runs], |sh| [sh.first_run, sh.end_run]);
-        Ok(SweepJson {
-            dir: r.dir.display().to_string(),
-            merged_from: None,
-            scenario: &m.scenario,
-            seed: m.seed,
-            runs: m.runs,
-            run_range: range,
-            shard: m.shard,
-            strategies: &m.strategies,
-            baseline: m.baseline.as_deref(),
-            runs_run: Some(r.runs_run),
-            runs_resumed: Some(r.runs_resumed),
-            already_complete: Some(r.already_complete),
-            seconds: None,
-            threads: None,
-            files,
-            statistics: &r.summary.statistics,
-        })
-    }
-}
-
-/// Quotes `s` for bash (single quotes): every byte inside is data, none is code.
-fn sh(s: &str) -> String {
-    format!("'{}'", s.replace('\'', r"'\''"))
 }
 
 /// `path` as text that may enter the generated script: UTF-8 (a lossy conversion would run
@@ -401,105 +281,6 @@ fn absolute(path: &Path, what: &str) -> anyhow::Result<PathBuf> {
             printable(&path.to_string_lossy())
         )
     })
-}
-
-/// What a Slurm submit script runs: every path absolute and checked by [`script_text`].
-struct SlurmJob<'a> {
-    /// Scenario name, for the script's opening comment.
-    name: &'a str,
-    /// The solsim binary the jobs run.
-    solsim: &'a str,
-    /// The scenario file.
-    scenario: &'a str,
-    /// The directory of the shards, the merged sweep and the logs.
-    out: &'a str,
-    spec: &'a SweepSpec,
-    shards: u64,
-    threads_per_task: u64,
-    /// `sbatch` options beside the fixed ones (`--partition=…`, `--time=…`), each already
-    /// checked to be letters, digits and `-_:.=`.
-    sbatch_extra: String,
-}
-
-impl SlurmJob<'_> {
-    /// The submit script. The two job scripts it writes are each one `printf '%s\n'` of
-    /// single-quoted lines whose values are single-quoted again: no path can end a quote, a
-    /// line or a here-document and become code.
-    fn script(&self) -> String {
-        let m = self.shards;
-        let spec = self.spec;
-        let strategies = spec
-            .strategies
-            .iter()
-            .map(|s| s.name())
-            .collect::<Vec<_>>()
-            .join(",");
-        let baseline = spec.baseline.map_or("none", Strategy::name);
-        let (solsim, scen, outq) = (sh(self.solsim), sh(self.scenario), sh(self.out));
-        let extra = &self.sbatch_extra;
-        let shard_job = [
-            "#!/usr/bin/env bash".to_string(),
-            "set -euo pipefail".to_string(),
-            format!(
-                "exec {solsim} sweep {scen} --runs {} --strategies {strategies} --seed {} --baseline {baseline} \
-                 --threads {} --shard \"$SLURM_ARRAY_TASK_ID/{m}\" --out {outq}/\"shard-$SLURM_ARRAY_TASK_ID-of-{m}\" --resume --quiet",
-                spec.runs, spec.seed, self.threads_per_task
-            ),
-        ];
-        let merge_job = [
-            "#!/usr/bin/env bash".to_string(),
-            "set -euo pipefail".to_string(),
-            format!("exec {solsim} sweep merge {outq}/shard-*-of-{m} --out {outq}/merged --quiet"),
-        ];
-        let printf = |lines: &[String], file: &str| {
-            let quoted: Vec<String> = lines.iter().map(|l| sh(l)).collect();
-            format!(
-                "printf '%s\\n' \\\n  {} \\\n  > \"$out/slurm/{file}\"",
-                quoted.join(" \\\n  ")
-            )
-        };
-        let mut s = String::new();
-        let _ = writeln!(s, "#!/usr/bin/env bash");
-        let _ = writeln!(
-            s,
-            "# solsim sweep of {} on Slurm: runs 0..{} of {strategies} (seed {}), in {m} shards —\n\
-             # one array task per shard (`solsim sweep --shard K/{m}`), then a merge job that runs\n\
-             # once every task has succeeded. Submit from a login node: bash THIS_FILE.\n\
-             # Shards write {outq}/shard-K-of-{m}, the merge {outq}/merged, Slurm logs {outq}/slurm.\n\
-             # A task that is requeued or re-run resumes its shard (--resume).",
-            sh(self.name),
-            spec.runs,
-            spec.seed,
-        );
-        let _ = writeln!(s, "set -euo pipefail");
-        let _ = writeln!(s, "out={outq}");
-        let _ = writeln!(s, "mkdir -p \"$out/slurm\"");
-        // sbatch reads `%` in an --output path as a filename pattern (`%j`: the job id);
-        // `%%` is a literal one.
-        let _ = writeln!(
-            s,
-            "logs={}/slurm  # $out/slurm for sbatch --output",
-            sh(&self.out.replace('%', "%%"))
-        );
-        let _ = writeln!(s, "{}", printf(&shard_job, "shard.sh"));
-        let _ = writeln!(s, "{}", printf(&merge_job, "merge.sh"));
-        let _ = writeln!(
-            s,
-            "array=$(sbatch --parsable --job-name=solsim-sweep --array=0-{} --cpus-per-task={}{extra} \\\n  \
-             --output=\"$logs/shard-%a.log\" \"$out/slurm/shard.sh\")",
-            m - 1,
-            self.threads_per_task
-        );
-        let _ = writeln!(s, "array=${{array%%;*}}");
-        let _ = writeln!(
-            s,
-            "merge=$(sbatch --parsable --job-name=solsim-merge --dependency=afterok:\"$array\"{extra} \\\n  \
-             --output=\"$logs/merge.log\" \"$out/slurm/merge.sh\")"
-        );
-        let _ = writeln!(s, "echo \"array job $array\"");
-        let _ = writeln!(s, "echo \"merge job ${{merge%%;*}}\"");
-        s
-    }
 }
 
 fn slurm(a: &SlurmArgs, budget: MemoryBudget, stdout: &mut dyn Write) -> anyhow::Result<()> {
@@ -583,161 +364,4 @@ fn slurm(a: &SlurmArgs, budget: MemoryBudget, stdout: &mut dyn Write) -> anyhow:
     };
     write!(stdout, "{}", job.script())?;
     Ok(())
-}
-
-fn plural(n: u64, what: &str) -> String {
-    match (n, what) {
-        (1, _) => format!("1 {what}"),
-        (_, "strategy") => format!("{n} strategies"),
-        _ => format!("{n} {what}s"),
-    }
-}
-
-fn pct(x: f64) -> String {
-    format!("{:.1}", 100.0 * x)
-}
-
-fn signed(x: f64, decimals: usize) -> String {
-    let t = format!("{x:+.decimals$}");
-    t.replace('-', "−")
-}
-
-/// The printed report of a sweep.
-#[must_use]
-pub fn report(r: &SweepResult, scenario: &Scenario, seconds: f64, threads: usize) -> String {
-    let m = &r.manifest;
-    let st: &Statistics = &r.summary.statistics;
-    let mut s = String::new();
-    let range = m.shard.map_or(0..m.runs, |sh| sh.first_run..sh.end_run);
-    let _ = writeln!(
-        s,
-        "{} — {} × {} (runs {}..{} of {}, seed {}){}",
-        scenario.name,
-        plural(range.end - range.start, "run"),
-        plural(m.strategies.len() as u64, "strategy"),
-        range.start,
-        range.end,
-        m.runs,
-        m.seed,
-        m.shard.map_or(String::new(), |sh| format!(
-            ", shard {}/{}",
-            sh.index, sh.count
-        ))
-    );
-    let how = if r.already_complete {
-        "already complete".to_string()
-    } else if r.runs_resumed > 0 {
-        format!(
-            "{} run indices resumed from committed chunks, {} run",
-            r.runs_resumed, r.runs_run
-        )
-    } else {
-        format!("{} run indices", r.runs_run)
-    };
-    let _ = writeln!(
-        s,
-        "{how} in {seconds:.1} s on {threads} threads; files in {}/ (runs.parquet, sols.parquet, summary.json, manifest.json)\n",
-        r.dir.display()
-    );
-    let _ = writeln!(
-        s,
-        "Rates: % of runs [95 % Wilson interval]. Disc coverage: % of drive sols, pooled over the runs,\n\
-         that ended with the truth inside the uncertainty disc [Wilson]. Figures: mean (p5–p95) over\n\
-         the runs that have them (n = how many, when not all)."
-    );
-    let mut figs = vec![Figure::SolsToGoal];
-    if m.segment.is_some() {
-        figs.push(Figure::SegmentSols);
-    }
-    figs.extend([Figure::DistanceM, Figure::MaxUncertaintyM]);
-    let rates = [
-        RateKind::NoPath,
-        RateKind::Fault,
-        RateKind::TruthOutsideDisc,
-        RateKind::GoalReached,
-    ];
-    let head_rate = |k: RateKind| match k {
-        RateKind::NoPath => "NO_PATH",
-        RateKind::Fault => "any fault",
-        RateKind::TruthOutsideDisc => "truth outside r",
-        RateKind::GoalReached => "goal reached",
-    };
-    let _ = write!(s, "{:<18}", "strategy");
-    for k in rates {
-        let _ = write!(s, " {:>19}", head_rate(k));
-    }
-    let _ = write!(s, " {:>22}", "disc coverage (sols)");
-    for f in &figs {
-        let _ = write!(s, " {:>19}", f.name());
-    }
-    let _ = writeln!(s);
-    for ss in &st.strategies {
-        let _ = write!(s, "{:<18}", ss.strategy);
-        for k in rates {
-            let cell = ss.rate(k.name()).map_or("-".into(), |r| {
-                format!(
-                    "{} [{}, {}]",
-                    pct(r.rate),
-                    pct(r.interval.lo),
-                    pct(r.interval.hi)
-                )
-            });
-            let _ = write!(s, " {cell:>19}");
-        }
-        let cell = ss.disc_coverage.as_ref().map_or("-".into(), |r| {
-            format!(
-                "{:.2} [{:.2}, {:.2}]",
-                100.0 * r.rate,
-                100.0 * r.interval.lo,
-                100.0 * r.interval.hi
-            )
-        });
-        let _ = write!(s, " {cell:>22}");
-        for f in &figs {
-            let cell = ss.figure(f.name()).map_or("-".into(), |sp| {
-                let d = if sp.mean.abs() >= 100.0 { 0 } else { 2 };
-                let n = if sp.n as u64 == ss.runs {
-                    String::new()
-                } else {
-                    format!(" n={}", sp.n)
-                };
-                format!("{:.d$} ({:.d$}–{:.d$}){n}", sp.mean, sp.p5, sp.p95)
-            });
-            let _ = write!(s, " {cell:>19}");
-        }
-        let _ = writeln!(s);
-    }
-    if let Some(b) = &st.baseline {
-        let mut paired = vec![Figure::SolsToGoal];
-        if m.segment.is_some() {
-            paired.extend([Figure::SegmentSols, Figure::SegmentDistanceM]);
-        }
-        paired.extend([Figure::NoPathFaults, Figure::DistanceM]);
-        let _ = writeln!(
-            s,
-            "\nPaired difference from {b}: mean of (strategy − {b}) over the run indices where both have the\n\
-             figure [95 % bootstrap interval, {} resamples].",
-            st.bootstrap_resamples
-        );
-        for ss in st.strategies.iter().filter(|x| &x.strategy != b) {
-            for (i, f) in paired.iter().enumerate() {
-                let name = if i == 0 { ss.strategy.as_str() } else { "" };
-                let cell = st
-                    .paired(&ss.strategy, f.name())
-                    .and_then(|p| p.difference)
-                    .map_or("- (no run where both have it)".into(), |d| {
-                        let dec = if f.name().ends_with("_m") { 1 } else { 2 };
-                        format!(
-                            "{:>8} [{}, {}]  {} pairs",
-                            signed(d.mean, dec),
-                            signed(d.interval.lo, dec),
-                            signed(d.interval.hi, dec),
-                            d.n
-                        )
-                    });
-                let _ = writeln!(s, "{name:<18} {:<20} {cell}", f.name());
-            }
-        }
-    }
-    s
 }

@@ -11,12 +11,9 @@ use anyhow::Context as _;
 use clap::{Args, Parser, Subcommand};
 
 use maps::MemoryBudget;
-use sim::{CampaignOutcome, Strategy};
-use solsim::output_set::OutputSet;
-use solsim::{cmd_localize, cmd_localize_rasters, cmd_map, cmd_package, cmd_zones, regress};
-use solsim::{report, report_runs};
-use study::Scenario;
-use sweep::engine::SweepSpec;
+use outputs::regress;
+use outputs::run_files::write_atomic;
+use solsim::{cmd_compare, cmd_localize, cmd_localize_rasters, cmd_map, cmd_package, cmd_zones};
 
 /// Simulate multi-sol Mars rover drives: position uncertainty, grown keep-out zones, AutoNav
 /// NO_PATH faults, and how operations strategies (ground-in-the-loop, onboard global
@@ -70,7 +67,7 @@ enum Command {
     /// interval, the true rates the count is consistent with (no fault in 200 runs: 0.0 %
     /// [0.0, 1.9]). Intervals narrow as 1/√N. The output does not depend on --threads; the
     /// summary also goes to --out as <scenario>.over-runs.json.
-    Compare(CompareArgs),
+    Compare(cmd_compare::CompareArgs),
     /// Write report.html for a compare output directory or a sweep directory: one
     /// self-contained page (figures as inline SVG, no script, nothing from the network).
     ///
@@ -91,9 +88,9 @@ enum Command {
     /// the passage ahead), time limit (the drive window, or stopped so the panorama makes the
     /// afternoon pass), drove the record's distance — or why a sol did not drive, and the
     /// localizations. The JSON's sols[].drive_end holds the same words.
-    Run(RunArgs),
+    Run(cmd_compare::RunArgs),
     /// Replay the historic record of a scenario (same as `run --strategy replay`).
-    Replay(ReplayArgs),
+    Replay(cmd_compare::ReplayArgs),
     /// Run every scenario's [[expect]] entries in a directory; exit 1 and print a diff on any
     /// mismatch.
     Regress(RegressArgs),
@@ -135,7 +132,7 @@ enum Command {
     /// Each run drives the rover on a plane slope (a heightfield collider) for --duration-s at
     /// 5 cm/s and measures slip = 1 − progress / commanded over the second half, the chassis
     /// tilt and the sideways drift; the wheels' traction comes from the Janosi–Hanamoto shear
-    /// law and their rolling resistance from Bekker's sinkage (sim::physics::soil cites the
+    /// law and their rolling resistance from Bekker's sinkage (sim::rover::physics::soil cites the
     /// soil values). Writes slip_profile.csv (with the closed-form steady slip of the same
     /// soil model beside each up and down run), slip_profile.svg and slip_profile.json to
     /// --out. The simulator reads the bundled table sim/data/slip_profile.csv, which is this
@@ -258,65 +255,6 @@ enum MapCommand {
     /// rendered along the route, masked to a corridor, as PNG tiles plus manifest.json; prints
     /// the corridor area, pixel counts, bytes per file, total MB and the time taken.
     Package(cmd_package::PackageArgs),
-}
-
-#[derive(Args)]
-struct OutputArgs {
-    /// Print JSON on standard output instead of the table.
-    #[arg(long)]
-    json: bool,
-    /// Directory for the JSON, per-sol CSV and GeoJSON files (GIS layers in Mars
-    /// longitude/latitude, and in the map's CRS with a .prj), replaced whole by each run (it
-    /// must be new, empty, or an earlier solsim output) [default: solsim-out/<scenario name>]
-    #[arg(long, value_name = "DIR")]
-    out: Option<PathBuf>,
-    /// Do not write output files.
-    #[arg(long)]
-    no_files: bool,
-}
-
-#[derive(Args)]
-struct CompareArgs {
-    /// Scenario file (TOML).
-    scenario: PathBuf,
-    /// Also compare over N seeded worlds (2 to 10000000; run 0 is the scenario's seed): means,
-    /// paired differences from ground with 95 % bootstrap intervals, fault rates with 95 %
-    /// Wilson intervals (see above).
-    #[arg(long, value_name = "N")]
-    runs: Option<u64>,
-    /// Worker threads [default: one per core]. The output does not depend on it.
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=1024))]
-    threads: Option<u64>,
-    /// Also write report.html (figures inline, the tables, the sol logs) beside the run's
-    /// files; `solsim report DIR` writes it later from the directory.
-    #[arg(long, conflicts_with = "no_files")]
-    report: bool,
-    /// Grow the keep-outs on the whole-traverse maps and the fault zooms by this uncertainty r,
-    /// metres [default: each keep-out by the r the rover had where its path came closest to
-    /// it; each fault's zoom by the fault's r].
-    #[arg(long, value_name = "R")]
-    map_r_m: Option<f64>,
-    #[command(flatten)]
-    output: OutputArgs,
-}
-
-#[derive(Args)]
-struct RunArgs {
-    /// Scenario file (TOML).
-    scenario: PathBuf,
-    /// Strategy: replay, ground, onboard, extension or extension+onboard.
-    #[arg(long, short, default_value = "ground")]
-    strategy: String,
-    #[command(flatten)]
-    output: OutputArgs,
-}
-
-#[derive(Args)]
-struct ReplayArgs {
-    /// Scenario file (TOML) with historic per-sol distances.
-    scenario: PathBuf,
-    #[command(flatten)]
-    output: OutputArgs,
 }
 
 #[derive(Args)]
@@ -463,13 +401,17 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
     };
     let budget = MemoryBudget::new(cli.memory_budget_mib << 20);
     match cli.command {
-        Command::Compare(a) => compare(&a, budget, stdout),
+        Command::Compare(a) => cmd_compare::compare(&a, budget, stdout),
         Command::Report(a) => {
             solsim::cmd_report::run(&a, budget, stdout)?;
             Ok(ExitCode::SUCCESS)
         }
-        Command::Run(a) => run_one(&a.scenario, &a.strategy, &a.output, budget, stdout),
-        Command::Replay(a) => run_one(&a.scenario, "replay", &a.output, budget, stdout),
+        Command::Run(a) => {
+            cmd_compare::run_one(&a.scenario, &a.strategy, &a.output, budget, stdout)
+        }
+        Command::Replay(a) => {
+            cmd_compare::run_one(&a.scenario, "replay", &a.output, budget, stdout)
+        }
         Command::Regress(a) => {
             let files = regress::scenario_files(&a.dir)
                 .with_context(|| format!("{}: cannot list scenario files", a.dir.display()))?;
@@ -480,37 +422,30 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
             let total: usize = files.iter().map(|f| regress::count_expectations(f)).sum();
             let progress =
                 solsim::progress::Progress::new(a.quiet, "regress", "checks", total as u64);
-            let mut results = Vec::new();
-            for f in &files {
-                let file = f.display().to_string();
-                let observed = regress::check_scenario_observed(f, budget, &|stage| match stage {
-                    regress::Stage::Loading => progress.set_message(format!("{file}: loading")),
-                    regress::Stage::OneRun { name, checks } if checks > 0 => progress
-                        .set_message(format!("{name}: {checks} checks on one run per strategy")),
-                    regress::Stage::OverRuns { name, checks } if checks > 0 => {
-                        progress.set_message(format!("{name}: {checks} checks over runs (sweeps)"));
-                    }
-                    regress::Stage::Checked(n) => progress.inc_by(n as u64),
-                    _ => {}
-                });
-                match observed {
-                    Ok(cases) => results.extend(cases),
-                    Err(e) => {
-                        progress.finish();
-                        return Err(e.into());
-                    }
+            let results = regress::check_scenarios(&files, budget, &|f, stage| match stage {
+                regress::Stage::Loading => {
+                    progress.set_message(format!("{}: loading", f.display()));
                 }
-            }
+                regress::Stage::OneRun { name, checks } if checks > 0 => {
+                    progress.set_message(format!("{name}: {checks} checks on one run per strategy"))
+                }
+                regress::Stage::OverRuns { name, checks } if checks > 0 => {
+                    progress.set_message(format!("{name}: {checks} checks over runs (sweeps)"));
+                }
+                regress::Stage::Checked(n) => progress.inc_by(n as u64),
+                _ => {}
+            });
             progress.finish();
+            let results = results?;
             if a.json {
                 writeln!(stdout, "{}", regress::json_report(&results))?;
             } else {
                 write!(stdout, "{}", regress::text_report(&results))?;
             }
             if let Some(path) = &a.junit {
-                report::write_atomic(path, regress::junit(&results).as_bytes()).with_context(
-                    || format!("{}: cannot write the JUnit report", path.display()),
-                )?;
+                write_atomic(path, regress::junit(&results).as_bytes()).with_context(|| {
+                    format!("{}: cannot write the JUnit report", path.display())
+                })?;
             }
             let failed = results.iter().any(|r| !r.mismatches.is_empty());
             Ok(if failed {
@@ -627,204 +562,5 @@ fn man_pages(
     }
     let pages = write_all(cmd, "solsim".into(), dir)?;
     writeln!(stdout, "wrote {pages} manual pages to {}", dir.display())?;
-    Ok(())
-}
-
-fn compare(
-    a: &CompareArgs,
-    budget: MemoryBudget,
-    stdout: &mut dyn std::io::Write,
-) -> anyhow::Result<ExitCode> {
-    // A bad --runs is refused before anything is loaded or run, as `sweep` refuses it.
-    if let Some(runs) = a.runs {
-        sweep::engine::check_runs(runs, report_runs::MIN_RUNS)?;
-    }
-    solsim::cmd_report::check_map_r(a.map_r_m)?;
-    let scenario = solsim::progress::load_scenario("compare", &a.scenario, budget)?;
-    let spec = match a.runs {
-        None => None,
-        Some(runs) => {
-            let spec = SweepSpec::new(&scenario, runs);
-            spec.validate(&scenario, budget)?;
-            // The runs may take a while: an --out that cannot be written is refused first.
-            if !a.output.no_files {
-                OutputSet::check(&out_dir(&a.output, &scenario))?;
-            }
-            Some(spec)
-        }
-    };
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(a.threads.map_or(0, |t| t as usize))
-        .build()
-        .context("cannot start the worker threads")?;
-    let (outcomes, summary) = pool.install(|| {
-        let outcomes = scenario.compare(&scenario.strategies(), scenario.seed());
-        let summary = spec
-            .as_ref()
-            .map(|spec| solsim::cmd_sweep::summary_in_memory(&scenario, spec));
-        (outcomes, summary)
-    });
-    let legs = &scenario.legs;
-    if a.output.json {
-        let docs: Vec<_> = outcomes
-            .iter()
-            .map(|o| report::run_json(&scenario, o, legs))
-            .collect();
-        match &summary {
-            None => write!(
-                stdout,
-                "{}",
-                report::pretty(&serde_json::Value::Array(docs))
-            )?,
-            Some(over_runs) => {
-                let doc = report_runs::CompareRunsJson {
-                    one_run: docs,
-                    over_runs,
-                };
-                writeln!(stdout, "{}", serde_json::to_string_pretty(&doc)?)?;
-            }
-        }
-    } else {
-        writeln!(
-            stdout,
-            "{} — {}\n",
-            scenario.name,
-            scenario.description.trim()
-        )?;
-        writeln!(
-            stdout,
-            "{}",
-            report::verdict(&scenario, &outcomes, summary.as_ref())
-        )?;
-        write!(stdout, "{}", report::compare_table(&outcomes))?;
-        write!(stdout, "{}", report::against_ground(&scenario, &outcomes))?;
-        if let Some(summary) = &summary {
-            let left = scenario
-                .study_segment
-                .map(|g| scenario.campaign.calendar.sols_from(g.from_sol));
-            write!(
-                stdout,
-                "{}",
-                report_runs::against_ground_over_runs(summary, left)
-            )?;
-        }
-    }
-    let mut extra: Vec<(String, String)> = Vec::new();
-    if !a.output.no_files {
-        let figures = solsim::report_html::run_figures(&scenario, &outcomes, a.map_r_m)?;
-        if a.report {
-            extra.push((
-                "report.html".into(),
-                solsim::report_html::run_report(&scenario, &outcomes, summary.as_ref(), &figures)?,
-            ));
-        }
-        extra.extend(figures.into_iter().map(|(name, _, svg)| (name, svg)));
-    }
-    extra.extend(summary.iter().map(|s| {
-        (
-            format!("{}.over-runs.json", scenario.name),
-            report_runs::summary_json(s),
-        )
-    }));
-    write_files(&a.output, &scenario, &outcomes, legs, &extra, stdout)?;
-    Ok(ExitCode::SUCCESS)
-}
-
-fn run_one(
-    path: &Path,
-    strategy: &str,
-    output: &OutputArgs,
-    budget: MemoryBudget,
-    stdout: &mut dyn std::io::Write,
-) -> anyhow::Result<ExitCode> {
-    let Some(strategy) = Strategy::from_name(strategy) else {
-        let names: Vec<&str> = Strategy::ALL.iter().map(|s| s.name()).collect();
-        anyhow::bail!(
-            "--strategy: expected one of {}, got {strategy:?}",
-            names.join(", ")
-        );
-    };
-    let scenario = solsim::progress::load_scenario("run", path, budget)?;
-    if strategy == Strategy::Replay && !scenario.has_history {
-        anyhow::bail!(
-            "{}: sols[*].historic_distance_m: expected historic distances for a replay, got none",
-            path.display()
-        );
-    }
-    let legs = &scenario.legs;
-    let outcome = scenario.run(strategy, scenario.seed());
-    if output.json {
-        write!(
-            stdout,
-            "{}",
-            report::pretty(&report::run_json(&scenario, &outcome, legs))
-        )?;
-    } else {
-        write!(stdout, "{}", report::sol_table(&outcome))?;
-    }
-    write_files(
-        output,
-        &scenario,
-        std::slice::from_ref(&outcome),
-        legs,
-        &[],
-        stdout,
-    )?;
-    Ok(ExitCode::SUCCESS)
-}
-
-/// `--out`, or its default `solsim-out/<scenario name>`.
-fn out_dir(output: &OutputArgs, scenario: &Scenario) -> PathBuf {
-    output
-        .out
-        .clone()
-        .unwrap_or_else(|| Path::new("solsim-out").join(&scenario.name))
-}
-
-/// Writes the per-strategy files of `outcomes`, and the `extra` (name, text) files, as one
-/// output set.
-fn write_files(
-    output: &OutputArgs,
-    scenario: &Scenario,
-    outcomes: &[CampaignOutcome],
-    legs: &[sim::outcome::LegClearance],
-    extra: &[(String, String)],
-    stdout: &mut dyn std::io::Write,
-) -> anyhow::Result<()> {
-    if output.no_files {
-        return Ok(());
-    }
-    let dir = out_dir(output, scenario);
-    // The whole set is written aside and swapped into place: a kill leaves the earlier
-    // run's files or these, never a mix.
-    let set = OutputSet::begin(&dir)?;
-    let mut written = report::write_scenario_files(&set, scenario)?;
-    for o in outcomes {
-        written.extend(report::write_run_files(&set, scenario, o, legs)?);
-    }
-    for (name, text) in extra {
-        written.push(set.write(name, text.as_bytes())?);
-    }
-    set.commit()?;
-    if !output.json {
-        let count = |suffix: &str| extra.iter().filter(|(n, _)| n.ends_with(suffix)).count();
-        let mut also = String::new();
-        if count(".svg") > 0 {
-            also.push_str(&format!("; {} SVG figures", count(".svg")));
-        }
-        if count("over-runs.json") > 0 {
-            also.push_str(&format!("; {}.over-runs.json", scenario.name));
-        }
-        if count("report.html") > 0 {
-            also.push_str("; report.html");
-        }
-        writeln!(
-            stdout,
-            "\nwrote {} files to {}/ (per strategy JSON, per-sol CSV and paths GeoJSON in Mars \
-             lon/lat; more GIS layers in gis/, in the map's CRS in gis/projected/{also})",
-            written.len(),
-            dir.display()
-        )?;
-    }
     Ok(())
 }

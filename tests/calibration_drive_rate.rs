@@ -27,7 +27,7 @@ fn the_rapid_traverse_drives_the_records_own_speeds() {
         other => panic!("expected OwnSpeeds, got {other:?}"),
     }
     // Ground, re-simulated, over the sols it and the record drove to their end.
-    let cal = &s.campaign.calendar;
+    let cal = &s.settings.calendar;
     let (mut ground_m, mut record_m, mut n) = (0.0, 0.0, 0u32);
     for run in 0..50 {
         let o = s.run_index(sim::Strategy::Ground, run);

@@ -1,4 +1,4 @@
-//! The VO failure probability the code ships (`sim::errors::VO_FAILURE_SOIL`) is the one the
+//! The VO failure probability the code ships (`sim::rover::errors::VO_FAILURE_SOIL`) is the one the
 //! record gives: `solsim calibrate vo scenarios/sol717-719.toml` re-derives it from paper 000
 //! Fig. 2 (0.289 m of 655.8 m driven without VO), and the re-simulated ground drives under the
 //! shipped value drive about as far without VO as the record.

@@ -258,11 +258,11 @@ fn run_zero_is_the_one_run_table() {
         maps::MemoryBudget::new(maps::MemoryBudget::DEFAULT_BYTES),
     )
     .expect("loads");
-    let outcomes = scenario.compare(&scenario.strategies(), scenario.seed());
+    let outcomes = scenario.compare(&scenario.strategies(), scenario.seeds());
     let spec = sweep::SweepSpec::new(&scenario, 1);
     let rows = sweep::engine::run_in_memory(&scenario, &spec, 0..1);
     assert_eq!(rows.len(), outcomes.len());
-    let section = solsim::report::against_ground(&scenario, &outcomes);
+    let section = outputs::against_ground::against_ground(&scenario, &outcomes);
     let ground = rows
         .iter()
         .find(|r| r.strategy == sim::Strategy::Ground)

@@ -4,18 +4,18 @@
 use localization::onboard::{
     FLIGHT_NAVCAM_IMAGES_BYTES, FLIGHT_SIZE_MAP_BYTES, MEASURED_FLIGHT_SIZE_RUN_S, OnboardSettings,
 };
-use sim::autonav::{ProfileSlip, RoverParams};
-use sim::localizer::{OnboardLocalizer, StatisticalLocalizer};
-use sim::planning_grid::GridParams;
-use sim::uncertainty::UncertaintyModel;
+use sim::grid::planning_grid::GridSettings;
+use sim::localizers::{OnboardLocalizer, StatisticalLocalizer};
+use sim::rover::autonav::{ProfileSlip, RoverSettings};
+use sim::rover::uncertainty::UncertaintyModel;
 
 #[test]
 fn readme_defaults_match_the_code() {
     let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md"))
         .expect("README.md");
-    let rover = RoverParams::default();
+    let rover = RoverSettings::default();
     let slip = ProfileSlip::default();
-    let grid = GridParams::default();
+    let grid = GridSettings::default();
     let model = UncertaintyModel::default();
     let loc = StatisticalLocalizer::default();
     let stated: &[(&str, f64, f64)] = &[
@@ -153,7 +153,8 @@ fn readme_defaults_match_the_code() {
     ] {
         assert!(readme.contains(&text), "README no longer states {text:?}");
     }
-    // Scenario-level defaults live in src/scenario.rs; loading a scenario without them uses them.
+    // Scenario-level defaults live in study's scenario loader (`[onboard_localization]`,
+    // `[operations]`); loading a scenario without them uses them.
     for text in [
         "`operator_margin_m` (1.0)",
         "(default 11:00 / 15:00",
@@ -161,7 +162,7 @@ fn readme_defaults_match_the_code() {
     ] {
         assert!(readme.contains(text), "README no longer states {text:?}");
     }
-    let rules = sim::policy::OperationsRules::default();
+    let rules = sim::operations::policy::OperationsRules::default();
     assert_eq!(rules.max_extension_sols, None);
     for text in [
         "`max_extension_sols` (default none".to_string(),
@@ -189,17 +190,20 @@ fn scenario_level_defaults_apply_when_fields_are_omitted() {
     let path =
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/crater-floor-717.toml");
     let s = study::Scenario::load(&path).expect("loads");
-    assert_eq!(s.campaign.operator_margin_m, 1.0);
-    assert_eq!(s.campaign.post_drive_imaging_s, 1800);
-    assert_eq!(s.campaign.rules, sim::policy::OperationsRules::default());
-    match &s.campaign.localizer {
+    assert_eq!(s.settings.operator_margin_m, 1.0);
+    assert_eq!(s.settings.sol_plan.imaging_s, 1800);
+    assert_eq!(
+        s.settings.rules,
+        sim::operations::policy::OperationsRules::default()
+    );
+    match &s.settings.localizer {
         OnboardLocalizer::Statistical(l) => assert_eq!(*l, StatisticalLocalizer::default()),
         other => panic!(
             "the default localizer is the statistical one, not {}",
             other.name()
         ),
     }
-    assert_eq!(s.campaign.model, UncertaintyModel::default());
+    assert_eq!(s.settings.model, UncertaintyModel::default());
 }
 
 #[test]
@@ -207,7 +211,7 @@ fn the_filter_localizers_defaults_are_the_readmes() {
     let readme =
         std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md"))
             .expect("README");
-    let pf = localization::particle::ParticleParams::default();
+    let pf = localization::particle::ParticleSettings::default();
     let ekf = localization::ekf::ParkedSettings::default();
     for text in [
         format!("`particle_count` ({}; 100 to", pf.particle_count),

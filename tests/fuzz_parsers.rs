@@ -263,7 +263,7 @@ fn fuzz_parsers() {
         time_limit: TEXT_TIME_LIMIT,
         memory_limit_bytes: TEXT_MEMORY_LIMIT,
         run: Box::new(|input| {
-            solsim::cmd_zones::parse_points(&text(input), &points_path)
+            study::point_files::parse_points(&text(input), &points_path)
                 .map(drop)
                 .map_err(|e| {
                     let message = e.to_string();

@@ -10,7 +10,7 @@ use crate::common;
 
 use common::{assert_bad_input, scenario_copy, solsim};
 use sim::Strategy;
-use sim::sol_plan::{SolPlan, TimelineStep};
+use sim::operations::sol_plan::{SolPlan, TimelineStep};
 use study::Scenario;
 
 /// A bundled scenario under `onboard`, with the link rate `kb_per_s` if given. The
@@ -26,7 +26,7 @@ fn onboard_run(scenario: &str, kb_per_s: Option<f64>) -> sim::CampaignOutcome {
         None => t,
     });
     let s = Scenario::load(&path).unwrap_or_else(|e| panic!("{e}"));
-    s.compare(&[Strategy::Onboard], s.seed())
+    s.compare(&[Strategy::Onboard], s.seeds())
         .pop()
         .expect("one outcome")
 }
@@ -87,7 +87,7 @@ fn the_transfer_takes_about_30_minutes_in_parallel_with_the_sol() {
             .iter()
             .find(|e| {
                 e.step
-                    == sim::outcome::LocalizationStep::Onboard(
+                    == sim::run::outcome::LocalizationStep::Onboard(
                         localization::hbs::HbsStep::TransferToHbs,
                     )
             })

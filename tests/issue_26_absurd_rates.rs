@@ -3,9 +3,10 @@
 //! (the rate underflowed to 0 m/s, each step's time was infinite, the drive time NaN, and a
 //! NaN time budget never ran out); `rover.step_m = 5e-324` gave drive sols of 0 m. Every rate
 //! and length of a scenario or campaign file now has a physical range
-//! (`study::scenario::ranges`, README "Input formats"): 0 where it is no value, subnormals,
+//! (beside each setting: `sim::rover::autonav::RoverSettings::STEP_RANGE_M`, …, and
+//! `study::ranges`; README "Input formats"): 0 where it is no value, subnormals,
 //! negatives, NaN, infinities and huge values are refused with the field named, and
-//! `sim::Campaign::validate` holds a campaign built in code to the rover's ranges.
+//! `sim::Settings::validate` holds settings built in code to the same ranges.
 
 use std::path::Path;
 
@@ -70,8 +71,8 @@ fn a_campaign_built_in_code_is_held_to_the_rover_ranges() {
     for (field, set) in [
         (
             "rover.drive_rate_m_per_h",
-            (|r: &mut sim::autonav::RoverParams, v| r.drive_rate_m_per_h = v)
-                as fn(&mut sim::autonav::RoverParams, f64),
+            (|r: &mut sim::rover::autonav::RoverSettings, v| r.drive_rate_m_per_h = v)
+                as fn(&mut sim::rover::autonav::RoverSettings, f64),
         ),
         ("rover.step_m", |r, v| r.step_m = v),
         ("rover.waypoint_tolerance_m", |r, v| {
@@ -79,7 +80,7 @@ fn a_campaign_built_in_code_is_held_to_the_rover_ranges() {
         }),
     ] {
         for v in [5e-324, 0.0, -1.0, f64::NAN, f64::INFINITY, 1e300] {
-            let mut c = scenario.campaign.clone();
+            let mut c = scenario.settings.clone();
             set(&mut c.rover, v);
             let e = c.validate().expect_err(&format!("{field} = {v:e}"));
             assert!(
@@ -89,8 +90,8 @@ fn a_campaign_built_in_code_is_held_to_the_rover_ranges() {
         }
     }
     let mut s = scenario.clone();
-    s.campaign.rover.drive_rate_m_per_h = 5e-324;
-    let outcome = s.run(sim::Strategy::Ground, s.seed());
+    s.settings.rover.drive_rate_m_per_h = 5e-324;
+    let outcome = s.run(sim::Strategy::Ground, s.seeds());
     for sol in &outcome.sols {
         assert_eq!(sol.distance_m, 0.0, "sol {}", sol.sol);
         assert!(sol.drive_time_s.is_finite(), "sol {}", sol.sol);

@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use common::{assert_bad_input, solsim, tiny};
-use solsim::regress::{CaseResult, junit};
+use outputs::regress::{CaseResult, junit};
 use study::expect::Mismatch;
 
 /// Parses `file` with python3's xml.etree and returns, for each testcase, its `classname`,

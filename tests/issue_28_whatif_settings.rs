@@ -77,7 +77,7 @@ fn setting_differences_flatten_tables_and_arrays_of_tables() {
                 [[sols]]\nsol = 2\n[[expect]]\nwhat = \"w\"\n";
     let variant = "name = \"b\"\nseed = 1\n[rover]\nx = 2\ny = [1, 2]\n[[sols]]\nsol = 1\n\
                    note = \"other\"\n[[sols]]\nsol = 3\n";
-    let d = solsim::cmd_whatif::setting_differences(base, variant).expect("TOML");
+    let d = sweep::setting_diff::setting_differences(base, variant).expect("TOML");
     let shown: Vec<String> = d.iter().map(ToString::to_string).collect();
     assert_eq!(
         shown,

@@ -14,9 +14,9 @@ use std::path::PathBuf;
 use std::process::Output;
 use std::sync::OnceLock;
 
-use localization::matcher::{MatchParams, OrbitalMap, RoverImages, localize};
+use localization::matcher::{MatchSettings, OrbitalMap, RoverImages, localize};
 use localization::synthetic::{
-    OrbitalParams, OrbitalProducts, RoverImagingParams, RoverObservation, render_orbital,
+    OrbitalProducts, OrbitalSettings, RoverImagingSettings, RoverObservation, render_orbital,
     render_rover, truth_patch,
 };
 use maps::raster_io::{write_dem, write_geotiff, write_raster};
@@ -98,9 +98,9 @@ fn scene() -> &'static Scene {
         let prior_m = [truth_m[0] + 4.5, truth_m[1] - 3.25];
         // The patch covers the search window around the prior plus half the orthomosaic.
         let patch = truth_patch(&layers, prior_m, RADIUS_M + 30.0 + 4.0, 21).expect("patch");
-        let orbital = render_orbital(&patch, &OrbitalParams::default(), 22).expect("orbital");
+        let orbital = render_orbital(&patch, &OrbitalSettings::default(), 22).expect("orbital");
         let rover =
-            render_rover(&patch, truth_m, &RoverImagingParams::default(), 23).expect("rover");
+            render_rover(&patch, truth_m, &RoverImagingSettings::default(), 23).expect("rover");
 
         // Rendering is deterministic and every writer renames atomically, so concurrent test
         // runs sharing this directory write identical files.
@@ -248,9 +248,9 @@ fn json_equals_the_library_call_on_the_same_rasters() {
             dem: Some((&s.rover.dem, &s.rover.dem_valid)),
         },
         s.prior_m,
-        &MatchParams {
+        &MatchSettings {
             search_radius_m: RADIUS_M,
-            ..MatchParams::default()
+            ..MatchSettings::default()
         },
     )
     .expect("localizes");

@@ -1,4 +1,4 @@
-//! `sim::mars_time` and `sim::earth_time` against an independent implementation:
+//! `sim::time::mars_time` and `sim::time::earth_time` against an independent implementation:
 //! `peers/mars24_reference.py`, the `marstime` package's Mars24 (Allison & McEwen 2000: MSD, MTC,
 //! LMST) fed Terrestrial Time from ERFA (`pyerfa`: UTC → TAI → TT, and TAI − UTC), which also
 //! turns Mars 2020 SCLK readings (TT seconds since J2000) back into UTC.
@@ -34,8 +34,8 @@ use crate::common;
 use std::time::Duration;
 
 use serde_json::{Value, json};
-use sim::earth_time::{DAY_S, LEAP_SECONDS, Utc, civil_from_days, tt_minus_utc_s};
-use sim::mars_time::{
+use sim::time::earth_time::{DAY_S, LEAP_SECONDS, Utc, civil_from_days, tt_minus_utc_s};
+use sim::time::mars_time::{
     MARS_2020, SOL_IN_DAYS, coordinated_mars_time_h, j2000_tt_days, lmst_h, m20_sclk_from_utc,
     mars_sol_date, utc_from_m20_sclk,
 };
@@ -178,8 +178,8 @@ fn mars_time_matches_marstime_with_erfa_over_the_mission() {
         "dates": dates,
     });
     let Some(python) = common::peers_python(&format!(
-        "the marstime/ERFA cross-check of sim::mars_time ({} instants, {} SCLK readings, {} \
-         leap-second dates; only the unit tests of sim::mars_time and sim::earth_time ran)",
+        "the marstime/ERFA cross-check of sim::time::mars_time ({} instants, {} SCLK readings, {} \
+         leap-second dates; only the unit tests of sim::time::mars_time and sim::time::earth_time ran)",
         instants.len(),
         sclk.len(),
         LEAP_SECONDS.len()
@@ -214,7 +214,7 @@ fn mars_time_matches_marstime_with_erfa_over_the_mission() {
         .iter()
         .map(|r| {
             let (y, mo) = (r[0].as_i64().expect("year"), r[1].as_u64().expect("month"));
-            let day = sim::earth_time::days_from_civil(y, mo as u32, 1);
+            let day = sim::time::earth_time::days_from_civil(y, mo as u32, 1);
             (day, r[2].as_f64().expect("TAI - UTC"))
         })
         .collect();

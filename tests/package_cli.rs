@@ -10,10 +10,11 @@ use std::path::{Path, PathBuf};
 use std::process::Output;
 
 use localization::hbs::HbsFile;
+use localization::map_package::{RenderSettings, render_block};
 use maps::package::{BlockRequest, distance_to_route_m};
 use maps::raster_io::read_png;
 use maps::{GeoTransform, Raster};
-use solsim::cmd_package::{RenderSettings, render_block};
+use study::map_package::SeededRenderSettings as _;
 
 /// The route of the test scenario: 67 m on a diagonal, in the middle of the map.
 const ROUTE: [[f64; 2]; 3] = [[1000.0, 1000.0], [1040.0, 1030.0], [1060.0, 1020.0]];

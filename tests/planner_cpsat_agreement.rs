@@ -159,8 +159,9 @@ fn the_fixtures_are_the_sol_problems_the_simulator_builds() {
             .expect("the bundled scenario loads");
     let mut built = std::collections::BTreeSet::new();
     for strategy in scenario.strategies() {
-        let (_, problems) =
-            sim::sol_plan::capture_sol_problems(|| scenario.run(strategy, scenario.seed()));
+        let (_, problems) = sim::operations::sol_plan::capture_sol_problems(|| {
+            scenario.run(strategy, scenario.seeds())
+        });
         assert!(!problems.is_empty(), "{}: no sol planned", strategy.name());
         for (_, problem) in problems {
             built.insert(serde_json::to_string_pretty(&problem).expect("problem JSON"));

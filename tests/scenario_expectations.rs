@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use solsim::regress;
+use outputs::regress;
 
 fn check(file: &str) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))

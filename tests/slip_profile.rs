@@ -3,8 +3,8 @@
 //! profile's trend against the closed-form terramechanics it stands on and the published record;
 //! and the scenario's slip settings refused with the field named.
 
-use sim::physics::{Heading, RoverBody, Soil, drive_on_dem, drive_on_slope};
-use sim::slip_profile::{ProfileHeading, SlipProfile};
+use sim::rover::physics::{Heading, RoverBody, Soil, drive_on_dem, drive_on_slope};
+use sim::rover::slip_profile::{ProfileHeading, SlipProfile};
 
 use maps::TerrainClass;
 

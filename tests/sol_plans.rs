@@ -7,8 +7,8 @@ use std::path::Path;
 
 use localization::hbs::HbsStep;
 use sim::Strategy;
-use sim::outcome::{LocalizationStep, RejectionReason};
-use sim::sol_plan::{LOCALIZATION_CHAIN, SolPlanStatus};
+use sim::operations::sol_plan::{LOCALIZATION_CHAIN, SolPlanStatus};
+use sim::run::outcome::{LocalizationStep, RejectionReason};
 use std::collections::HashMap;
 
 use sim::CampaignOutcome;
@@ -26,7 +26,7 @@ fn compare(s: &Scenario, strategies: &[Strategy]) -> HashMap<Strategy, CampaignO
     strategies
         .iter()
         .copied()
-        .zip(s.compare(strategies, s.seed()))
+        .zip(s.compare(strategies, s.seeds()))
         .collect()
 }
 
@@ -248,7 +248,7 @@ fn the_self_reliant_campaign_executes_science_and_replans() {
     );
 }
 
-fn injected_event(o: &sim::CampaignOutcome, sol: u32) -> sim::outcome::LocalizationEvent {
+fn injected_event(o: &sim::CampaignOutcome, sol: u32) -> sim::run::outcome::LocalizationEvent {
     o.sol(sol)
         .and_then(|r| r.onboard_localization.clone())
         .expect("onboard localization")
@@ -259,12 +259,12 @@ fn injected_event(o: &sim::CampaignOutcome, sol: u32) -> sim::outcome::Localizat
 #[test]
 fn a_lost_localization_replans_the_rest_of_the_sol() {
     let mut s = scenario("crater-floor-passage.toml");
-    s.campaign.localizer =
-        sim::localizer::OnboardLocalizer::Statistical(sim::localizer::StatisticalLocalizer {
+    s.settings.localizer =
+        sim::localizers::OnboardLocalizer::Statistical(sim::localizers::StatisticalLocalizer {
             failure_rate: 1.0,
             ..Default::default()
         });
-    let run = s.run(Strategy::Onboard, s.seed());
+    let run = s.run(Strategy::Onboard, s.seeds());
     let mut lost = 0;
     for sol in run.sols.iter().filter(|r| r.drove) {
         let plan = sol.activity_plan.as_ref().expect("plan");
@@ -302,7 +302,7 @@ fn typed_outcomes_serialise_as_their_display_text() {
     use localization::hbs::LossReason;
     use localization::onboard::LostReason;
     use sim::FaultKind;
-    use sim::outcome::{LocalizationKind, SkipReason};
+    use sim::run::outcome::{LocalizationKind, SkipReason};
 
     fn same<T: serde::Serialize + std::fmt::Display>(v: T, text: &str) {
         assert_eq!(v.to_string(), text);

@@ -20,12 +20,12 @@
 
 use localization::benchmark_set::{BenchmarkMaps, TerrainKind, benchmark_cases};
 use localization::matcher::{
-    MatchParams, Method, OrbitalMap, RoverImages, ScoreSurface, score_surface,
+    MatchSettings, Method, OrbitalMap, RoverImages, ScoreSurface, score_surface,
 };
 use localization::particle::likelihood_grid;
 use localization::synthetic::{
-    ORTHO_RESOLUTION_M_PER_PX, ORTHO_SIZE_PX, OrbitalParams, RoverImagingParams, render_orbital,
-    render_rover, truth_patch,
+    ORTHO_RESOLUTION_M_PER_PX, ORTHO_SIZE_PX, OrbitalSettings, RoverImagingSettings,
+    render_orbital, render_rover, truth_patch,
 };
 use rayon::prelude::*;
 
@@ -47,7 +47,7 @@ struct Case {
 fn render(
     case: &localization::benchmark_set::BenchmarkCase,
     maps: &BenchmarkMaps,
-    p: &MatchParams,
+    p: &MatchSettings,
 ) -> Option<Case> {
     // The benchmark's own draws for this case.
     let layers = maps.get(case.terrain);
@@ -63,14 +63,14 @@ fn render(
     // which would not hold the window around the truth).
     let _ = prior_m;
     let half_size_m = WINDOW_M + half_ortho_m + PATCH_MARGIN_M;
-    let rover_params = RoverImagingParams {
+    let rover_params = RoverImagingSettings {
         wedge_count: usize::from(case.wedges),
         sun_azimuth_range_deg: [case.sun_azimuth_deg; 2],
         sun_elevation_range_deg: [case.sun_elevation_deg; 2],
-        ..RoverImagingParams::default()
+        ..RoverImagingSettings::default()
     };
     let patch = truth_patch(layers, truth_m, half_size_m, truth_seed).ok()?;
-    let orbital = render_orbital(&patch, &OrbitalParams::default(), orbital_seed).ok()?;
+    let orbital = render_orbital(&patch, &OrbitalSettings::default(), orbital_seed).ok()?;
     let rover = render_rover(&patch, truth_m, &rover_params, rover_seed).ok()?;
     let map = OrbitalMap::of(&orbital);
     let images = RoverImages::of(&rover);
@@ -159,9 +159,9 @@ fn main() {
         .get(2)
         .and_then(|a| Method::from_name(a))
         .unwrap_or(Method::Census);
-    let p = MatchParams {
+    let p = MatchSettings {
         method,
-        ..MatchParams::default()
+        ..MatchSettings::default()
     };
     let maps = BenchmarkMaps::generate(1);
     let started = std::time::Instant::now();

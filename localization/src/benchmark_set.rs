@@ -12,25 +12,29 @@
 //!
 //! ```no_run
 //! use localization::benchmark_set::{BenchmarkMaps, benchmark_cases, run_benchmark};
-//! use localization::matcher::MatchParams;
+//! use localization::matcher::MatchSettings;
 //!
 //! let maps = BenchmarkMaps::generate(1);
 //! let cases = benchmark_cases(24, 7);
-//! let report = run_benchmark(&cases, |k| maps.get(k), &MatchParams::default());
+//! let report = run_benchmark(&cases, |k| maps.get(k), &MatchSettings::default());
 //! println!("mean error {:.2} m", report.all.mean_m);
 //! ```
 
 use crate::synthetic::{OrbitalProducts, RoverObservation, SyntheticError};
-use maps::procedural::{DuneField, TerrainParams, generate};
+use maps::procedural::{DuneField, TerrainSettings, generate};
 use maps::{GeoTransform, MapLayers};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
-use crate::matcher::{MatchParams, OrbitalMap, Rejection, RoverImages, localize};
+mod report;
+
+pub use report::{BenchmarkReport, CaseResult, ErrorStats, report_of};
+
+use crate::matcher::{MatchSettings, OrbitalMap, RoverImages, localize};
 use crate::synthetic::{
-    ORTHO_RESOLUTION_M_PER_PX, ORTHO_SIZE_PX, OrbitalParams, RoverImagingParams, render_orbital,
-    render_rover, truth_patch,
+    ORTHO_RESOLUTION_M_PER_PX, ORTHO_SIZE_PX, OrbitalSettings, RoverImagingSettings,
+    render_orbital, render_rover, truth_patch,
 };
 
 /// Panoramas in the paper's benchmark (paper 000 §4).
@@ -78,18 +82,18 @@ impl TerrainKind {
 /// The generator settings of the procedural map of `kind` ([`MAP_SIZE_M`] square, 1 m
 /// pixels, x and y in `0..MAP_SIZE_M`).
 #[must_use]
-pub fn terrain_params(kind: TerrainKind, seed: u64) -> TerrainParams {
+pub fn terrain_params(kind: TerrainKind, seed: u64) -> TerrainSettings {
     let size = MAP_SIZE_M;
-    let base = TerrainParams {
+    let base = TerrainSettings {
         seed,
         width_px: size,
         height_px: size,
         geo: GeoTransform::new(0.0, size as f64, 1.0),
-        ..TerrainParams::default()
+        ..TerrainSettings::default()
     };
     let half = size as f64 / 2.0;
     match kind {
-        TerrainKind::Rocky => TerrainParams {
+        TerrainKind::Rocky => TerrainSettings {
             bedrock_fraction: 0.7,
             sand_fraction: 0.05,
             crater_density_per_km2: 25.0,
@@ -98,7 +102,7 @@ pub fn terrain_params(kind: TerrainKind, seed: u64) -> TerrainParams {
             ridge_count: 4,
             ..base
         },
-        TerrainKind::Plain => TerrainParams {
+        TerrainKind::Plain => TerrainSettings {
             bedrock_fraction: 0.05,
             sand_fraction: 0.05,
             relief_m: 5.0,
@@ -115,7 +119,7 @@ pub fn terrain_params(kind: TerrainKind, seed: u64) -> TerrainParams {
         // crests interfere where fields overlap. The spacings, heights and azimuths are a
         // judgement. The troughs between them are armoured lag and bedrock, not sand (see
         // `synthetic::truth`); the decimetre ripples on the loose sand come from the truth patch.
-        TerrainKind::Dunes => TerrainParams {
+        TerrainKind::Dunes => TerrainSettings {
             dune_fields: vec![
                 DuneField {
                     center_m: [half, half],
@@ -204,28 +208,12 @@ pub struct BenchmarkCase {
     /// Class of the lighting difference.
     pub lighting: LightingKind,
     /// The rover's sun azimuth, degrees clockwise from north (the orbital sun is at
-    /// [`OrbitalParams::default`]'s 250°).
+    /// [`OrbitalSettings::default`]'s 250°).
     pub sun_azimuth_deg: f64,
     /// The rover's sun elevation, degrees (the orbital sun is at 35°).
     pub sun_elevation_deg: f64,
     /// Seed of everything else: position, prior offset, truth, orbital and rover renders.
     pub seed: u64,
-}
-
-impl BenchmarkCase {
-    /// Angle between the rover's sun and the orbital sun, degrees.
-    #[must_use]
-    pub fn sun_angle_difference_deg(&self) -> f64 {
-        let o = OrbitalParams::default();
-        let dir = |az: f64, el: f64| {
-            let (az, el) = (az.to_radians(), el.to_radians());
-            [az.sin() * el.cos(), az.cos() * el.cos(), el.sin()]
-        };
-        let a = dir(self.sun_azimuth_deg, self.sun_elevation_deg);
-        let b = dir(o.sun_azimuth_deg, o.sun_elevation_deg);
-        let dot = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-        dot.clamp(-1.0, 1.0).acos().to_degrees()
-    }
 }
 
 /// `n` benchmark cases drawn from `seed` (the paper's set has [`PAPER_CASE_COUNT`]).
@@ -274,148 +262,8 @@ pub fn benchmark_cases(n: usize, seed: u64) -> Vec<BenchmarkCase> {
         .collect()
 }
 
-/// The outcome of one case.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
-pub struct CaseResult {
-    /// The case's id.
-    pub id: usize,
-    /// Its terrain.
-    pub terrain: TerrainKind,
-    /// Its wedge count.
-    pub wedges: u8,
-    /// Its lighting class.
-    pub lighting: LightingKind,
-    /// True rover position, map metres.
-    pub truth_m: [f64; 2],
-    /// Prior position given to the matcher, map metres.
-    pub prior_m: [f64; 2],
-    /// The matcher's estimate, map metres (`None` if the case failed to run).
-    pub estimate_m: Option<[f64; 2]>,
-    /// Distance of the estimate from the truth, metres (`None` if the case failed to run).
-    pub error_m: Option<f64>,
-    /// The matcher's σ, metres.
-    pub sigma_m: Option<f64>,
-    /// The matcher's peak ratio.
-    pub peak_ratio: Option<f64>,
-    /// Valid fraction of the orthomosaic.
-    pub valid_fraction: Option<f64>,
-    /// Why the matcher rejected its result, if it did.
-    pub rejection: Option<Rejection>,
-    /// Why the case could not be run at all (bad synthetic input or localize error), if so.
-    pub failure: Option<String>,
-    /// Heading error the rover mosaic was rendered with, degrees (truth, diagnostics).
-    pub heading_error_deg: Option<f64>,
-}
-
-impl CaseResult {
-    /// The row of `case` before localization: its truth and prior, nothing estimated yet.
-    #[must_use]
-    pub fn pending(case: &BenchmarkCase, truth_m: [f64; 2], prior_m: [f64; 2]) -> Self {
-        Self {
-            id: case.id,
-            terrain: case.terrain,
-            wedges: case.wedges,
-            lighting: case.lighting,
-            truth_m,
-            prior_m,
-            estimate_m: None,
-            error_m: None,
-            sigma_m: None,
-            peak_ratio: None,
-            valid_fraction: None,
-            rejection: None,
-            failure: None,
-            heading_error_deg: None,
-        }
-    }
-
-    /// Record the matcher's outcome: its estimate, error, σ, peak ratio, valid fraction and
-    /// verdict, or the failure.
-    pub fn record(&mut self, result: Result<crate::matcher::MatchResult, impl std::fmt::Display>) {
-        match result {
-            Ok(m) => {
-                self.estimate_m = Some(m.position_m);
-                self.error_m = Some(
-                    (m.position_m[0] - self.truth_m[0]).hypot(m.position_m[1] - self.truth_m[1]),
-                );
-                self.sigma_m = Some(m.sigma_m);
-                self.peak_ratio = Some(m.peak_ratio);
-                self.valid_fraction = Some(m.valid_fraction);
-                self.rejection = m.rejection;
-            }
-            Err(e) => self.failure = Some(e.to_string()),
-        }
-    }
-}
-
-/// Error statistics over a set of cases, metres.
-#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
-pub struct ErrorStats {
-    /// Cases counted.
-    pub count: usize,
-    /// Mean error.
-    pub mean_m: f64,
-    /// Median error.
-    pub median_m: f64,
-    /// 99th percentile (nearest rank).
-    pub p99_m: f64,
-    /// Largest error.
-    pub max_m: f64,
-    /// Cases with an error over 1 m.
-    pub over_1m: usize,
-    /// Cases with an error over 2 m.
-    pub over_2m: usize,
-}
-
-impl ErrorStats {
-    /// Statistics of `errors` (any order; NaN-free). Empty input gives all zeros.
-    #[must_use]
-    pub fn of(errors: &[f64]) -> Self {
-        if errors.is_empty() {
-            return Self::default();
-        }
-        let mut e = errors.to_vec();
-        e.sort_by(f64::total_cmp);
-        let n = e.len();
-        let median_m = if n % 2 == 1 {
-            e[n / 2]
-        } else {
-            0.5 * (e[n / 2 - 1] + e[n / 2])
-        };
-        // Nearest rank: the smallest value with at least 99 % of the values at or below it.
-        let rank = ((0.99 * n as f64).ceil() as usize).clamp(1, n);
-        Self {
-            count: n,
-            mean_m: e.iter().sum::<f64>() / n as f64,
-            median_m,
-            p99_m: e[rank - 1],
-            max_m: e[n - 1],
-            over_1m: e.iter().filter(|&&v| v > 1.0).count(),
-            over_2m: e.iter().filter(|&&v| v > 2.0).count(),
-        }
-    }
-}
-
-/// What a benchmark run found.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
-pub struct BenchmarkReport {
-    /// Statistics over every case that ran, accepted or not (the paper reports all 264).
-    pub all: ErrorStats,
-    /// Statistics over the cases the matcher accepted.
-    pub accepted: ErrorStats,
-    /// Statistics per terrain kind (every case that ran), in [`TerrainKind::ALL`] order.
-    pub by_terrain: Vec<(TerrainKind, ErrorStats)>,
-    /// Rejections by reason ([`Rejection::NAMES`]: `too_few_valid`, `ambiguous`, `imprecise`, `on_window_edge`),
-    /// with counts, in that order, zero counts left out.
-    pub rejections: Vec<(&'static str, usize)>,
-    /// Cases that could not be run.
-    pub failures: usize,
-    /// One row per case, in case order.
-    pub rows: Vec<CaseResult>,
-}
-
 /// Renders and localizes every case against `layers_for(case.terrain)` with `params` and the
-/// default imaging settings ([`OrbitalParams::default`], [`RoverImagingParams::default`] with
+/// default imaging settings ([`OrbitalSettings::default`], [`RoverImagingSettings::default`] with
 /// the case's wedges and sun).
 ///
 /// Per case, from its seed: a true position uniform over the map at least 140 m from its
@@ -428,7 +276,7 @@ pub struct BenchmarkReport {
 pub fn run_benchmark<'a, F>(
     cases: &[BenchmarkCase],
     layers_for: F,
-    params: &MatchParams,
+    params: &MatchSettings,
 ) -> BenchmarkReport
 where
     F: Fn(TerrainKind) -> &'a MapLayers + Sync,
@@ -441,41 +289,16 @@ where
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct BenchmarkImaging {
     /// Orbital products settings.
-    pub orbital: OrbitalParams,
+    pub orbital: OrbitalSettings,
     /// Rover imaging settings (wedges and sun taken from each case).
-    pub rover: RoverImagingParams,
-}
-
-impl BenchmarkImaging {
-    /// Every added error source off: no orbital epoch change (albedo change, dust devil
-    /// tracks, ripple migration), no ortho displacement, the old 0.7 px PSF, and no rover
-    /// heading, scale or mosaic-centre error. Lighting, wedges, occlusion and stereo noise stay.
-    #[must_use]
-    pub fn without_added_errors() -> Self {
-        Self {
-            orbital: OrbitalParams {
-                blur_sigma_px: 0.7,
-                albedo_change_sigma: 0.0,
-                dust_devil_tracks_per_ha: 0.0,
-                ripple_migration_m: 0.0,
-                ortho_displacement_sigma_m: 0.0,
-                ..OrbitalParams::default()
-            },
-            rover: RoverImagingParams {
-                heading_sigma_deg: 0.0,
-                scale_sigma: 0.0,
-                mosaic_offset_sigma_m: 0.0,
-                ..RoverImagingParams::default()
-            },
-        }
-    }
+    pub rover: RoverImagingSettings,
 }
 
 /// [`run_benchmark`] with explicit imaging settings.
 pub fn run_benchmark_with<'a, F>(
     cases: &[BenchmarkCase],
     layers_for: F,
-    params: &MatchParams,
+    params: &MatchSettings,
     imaging: &BenchmarkImaging,
 ) -> BenchmarkReport
 where
@@ -489,7 +312,7 @@ where
 pub fn run_benchmark_reporting<'a, F>(
     cases: &[BenchmarkCase],
     layers_for: F,
-    params: &MatchParams,
+    params: &MatchSettings,
     imaging: &BenchmarkImaging,
     done: &(dyn Fn(u64) + Sync),
 ) -> BenchmarkReport
@@ -506,47 +329,6 @@ where
         })
         .collect();
     report_of(rows)
-}
-
-/// The report of finished rows (statistics computed sequentially, in row order).
-#[must_use]
-pub fn report_of(rows: Vec<CaseResult>) -> BenchmarkReport {
-    let all: Vec<f64> = rows.iter().filter_map(|r| r.error_m).collect();
-    let accepted: Vec<f64> = rows
-        .iter()
-        .filter(|r| r.rejection.is_none())
-        .filter_map(|r| r.error_m)
-        .collect();
-    let by_terrain = TerrainKind::ALL
-        .iter()
-        .map(|&k| {
-            let e: Vec<f64> = rows
-                .iter()
-                .filter(|r| r.terrain == k)
-                .filter_map(|r| r.error_m)
-                .collect();
-            (k, ErrorStats::of(&e))
-        })
-        .collect();
-    let rejections = Rejection::NAMES
-        .into_iter()
-        .map(|name| {
-            let n = rows
-                .iter()
-                .filter(|r| r.rejection.as_ref().map(Rejection::name) == Some(name))
-                .count();
-            (name, n)
-        })
-        .filter(|&(_, n)| n > 0)
-        .collect();
-    BenchmarkReport {
-        all: ErrorStats::of(&all),
-        accepted: ErrorStats::of(&accepted),
-        by_terrain,
-        rejections,
-        failures: rows.iter().filter(|r| r.failure.is_some()).count(),
-        rows,
-    }
 }
 
 /// What a benchmark case draws from its seed, in this order: the true position (at least
@@ -617,7 +399,7 @@ pub fn render_case(
     let draws = case_draws(case, layers);
     let half_ortho_m = 0.5 * ORTHO_SIZE_PX as f64 * ORTHO_RESOLUTION_M_PER_PX;
     let half_size_m = search_radius_m + half_ortho_m + PATCH_MARGIN_M;
-    let rover_params = RoverImagingParams {
+    let rover_params = RoverImagingSettings {
         wedge_count: usize::from(case.wedges),
         sun_azimuth_range_deg: [case.sun_azimuth_deg; 2],
         sun_elevation_range_deg: [case.sun_elevation_deg; 2],
@@ -634,7 +416,7 @@ pub fn render_case(
 pub fn run_case(
     case: &BenchmarkCase,
     layers: &MapLayers,
-    params: &MatchParams,
+    params: &MatchSettings,
     imaging: &BenchmarkImaging,
 ) -> CaseResult {
     let CaseDraws {

@@ -62,7 +62,7 @@ mod table1;
 mod trajectory;
 mod tuning;
 
-pub use case_settings::{CaseError, CaseSettings};
+pub use case_settings::{CaseError, CaseSettings, Table1Case};
 pub use filter::{
     Ekf, EkfInitError, Innovation, process_jacobian, propagate_state, transition_matrix,
 };
@@ -79,8 +79,8 @@ pub use orbit::{CircularOrbit, Ephemeris, OrbitState};
 pub use parked::{ParkedFix, ParkedSettings, parked_fix};
 pub use state::{STATE_DIM, StateCovariance, StateVector, ix};
 pub use table1::{
-    CaseRun, ErrorSummary, FilteredRun, MeasurementStreams, Simulation, StepRecord, Table1Case,
-    filter_streams, run_case, run_with, simulate,
+    CaseRun, ErrorSummary, FilteredRun, MeasurementStreams, Simulation, StepRecord, filter_streams,
+    run_case, run_with, simulate,
 };
 pub use trajectory::{TrajectorySettings, TrueState, TruthTrajectory};
 pub use tuning::{BiasPriors, FilterModel, FilterTuning};

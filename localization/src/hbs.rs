@@ -2,7 +2,7 @@
 //!
 //! The rover's RAD750 writes the localization input file (`MOB_WRITE_ONBD_INPUT_FILE`) and sends
 //! it, with the post-drive images and map tiles, to the HBS over a serial link; each file
-//! crosses it at its flight size ([`HbsFile::link_bytes`]), at [`HbsParams::link_bytes_per_s`]
+//! crosses it at its flight size ([`HbsFile::link_bytes`]), at [`HbsSettings::link_bytes_per_s`]
 //! (~30 min at the flown 10 KB/s, paper 000 §4). The HBS runs the
 //! localization, reboots, runs it again; the two result files come back and must match byte for
 //! byte; every file carries an MD5 checksum that is checked at every stage; timeouts catch stalls;
@@ -24,7 +24,7 @@ use rand_chacha::ChaCha8Rng;
 
 /// Co-processor settings (plain struct; every field has a unit and a default).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
-pub struct HbsParams {
+pub struct HbsSettings {
     /// Serial link rate, bytes per second (default: 10,000 — "10KB/s", paper 000 §6; "up to
     /// 40KB/s could become possible with an RCE flight software update", ibid.). A KB is
     /// 1,000 bytes here.
@@ -45,7 +45,7 @@ pub struct HbsParams {
     pub p_stall: f64,
 }
 
-impl Default for HbsParams {
+impl Default for HbsSettings {
     fn default() -> Self {
         Self {
             link_bytes_per_s: 10_000.0,
@@ -272,7 +272,7 @@ fn flip_bit(bytes: &mut [u8], rng: &mut ChaCha8Rng) {
 /// draws come from `rng` in a fixed order, so a seed replays a run exactly.
 pub fn run_activity(
     inputs: &[HbsFile],
-    params: &HbsParams,
+    params: &HbsSettings,
     rng: &mut ChaCha8Rng,
     algorithm: impl Fn(&[HbsFile]) -> Vec<u8>,
     validate: impl Fn(&[u8]) -> Result<(), String>,
@@ -434,7 +434,7 @@ pub struct SeuCounts {
 pub fn seu_campaign(
     runs: u32,
     seed: u64,
-    params: &HbsParams,
+    params: &HbsSettings,
     inputs: &[HbsFile],
     algorithm: impl Fn(&[HbsFile]) -> Vec<u8>,
     validate: impl Fn(&[u8]) -> Result<(), String>,
@@ -493,7 +493,7 @@ mod tests {
     #[test]
     fn nominal_run_applies_and_times_the_link() {
         let mut rng = ChaCha8Rng::seed_from_u64(3);
-        let p = HbsParams::default();
+        let p = HbsSettings::default();
         let log = run_activity(&inputs(), &p, &mut rng, algorithm, |_| Ok(()));
         assert_eq!(log.outcome, Ok(algorithm(&inputs())));
         assert!(log.upsets.is_empty());
@@ -538,28 +538,28 @@ mod tests {
     fn each_upset_kind_is_caught() {
         let cases = [
             (
-                HbsParams {
+                HbsSettings {
                     p_flip_storage: 1.0,
                     ..Default::default()
                 },
                 "InputChecksum",
             ),
             (
-                HbsParams {
+                HbsSettings {
                     p_flip_memory: 1.0,
                     ..Default::default()
                 },
                 "ResultsDiffer",
             ),
             (
-                HbsParams {
+                HbsSettings {
                     p_flip_output: 1.0,
                     ..Default::default()
                 },
                 "OutputChecksum",
             ),
             (
-                HbsParams {
+                HbsSettings {
                     p_stall: 1.0,
                     ..Default::default()
                 },
@@ -584,7 +584,7 @@ mod tests {
         let mut rng = ChaCha8Rng::seed_from_u64(2);
         let log = run_activity(
             &inputs(),
-            &HbsParams::default(),
+            &HbsSettings::default(),
             &mut rng,
             algorithm,
             |_| Err("ambiguous peak".into()),
@@ -601,7 +601,7 @@ mod tests {
     /// activities with every kind of upset injected at high rates.
     #[test]
     fn no_corrupted_result_is_ever_applied() {
-        let p = HbsParams {
+        let p = HbsSettings {
             p_flip_storage: 0.1,
             p_flip_memory: 0.2,
             p_flip_output: 0.1,

@@ -5,7 +5,7 @@
 //!    equirectangular with true scale at one latitude, Jezero's 18.4663°; at another latitude a
 //!    map metre east is not a ground metre). See [`easting_scale`].
 //! 2. The orbital appearance is cropped to the search window (prior ± search radius) and the
-//!    appearance score of every 25 cm offset is computed by the [`Method`] of [`MatchParams`]:
+//!    appearance score of every 25 cm offset is computed by the [`Method`] of [`MatchSettings`]:
 //!    by default both are census-transformed and
 //!    [`hamming_scores`](crate::census::hamming_scores) scores every offset exactly;
 //!    the baselines of paper 000 §4 are masked NCC
@@ -20,8 +20,8 @@
 //! 4. The best offset is refined to sub-pixel by the quadratic fit of [`subpixel_peak`].
 //! 5. Confidence: σ from the fitted curvature and the noise of the best score (census: binomial
 //!    noise of the fraction of disagreeing bits, one independent sample per
-//!    [`MatchParams::census_bits_per_sample`] bits; NCC and MI: the residual of the quadratic
-//!    fit, see [`Method`]) plus [`MatchParams::sigma_floor_m`] in quadrature, both calibrated on
+//!    [`MatchSettings::census_bits_per_sample`] bits; NCC and MI: the residual of the quadratic
+//!    fit, see [`Method`]) plus [`MatchSettings::sigma_floor_m`] in quadrature, both calibrated on
 //!    the synthetic 264-case set; the ratio of the best other local minimum outside the peak's
 //!    neighbourhood to the best; and the fraction of valid pixels; validity checks turn any of them out of bounds into a
 //!    rejection with a reason. The DEM term, sub-pixel fit, σ propagation and checks are shared
@@ -111,7 +111,7 @@ impl std::fmt::Display for Method {
 
 /// Matcher settings (plain struct; units and defaults on each field).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
-pub struct MatchParams {
+pub struct MatchSettings {
     /// Search radius around the prior, metres (default: 30, paper 000 §4; up to 100).
     pub search_radius_m: f64,
     /// Weight of the appearance (census) score (default: 1.0).
@@ -165,7 +165,7 @@ pub struct MatchParams {
     pub method: Method,
 }
 
-impl Default for MatchParams {
+impl Default for MatchSettings {
     fn default() -> Self {
         Self {
             search_radius_m: 30.0,
@@ -368,7 +368,7 @@ pub fn localize(
     orbital: &OrbitalMap<'_>,
     rover: &RoverImages<'_>,
     prior_m: [f64; 2],
-    p: &MatchParams,
+    p: &MatchSettings,
 ) -> Result<MatchResult, LocalizeError> {
     let surface = score_surface(
         orbital,
@@ -532,7 +532,7 @@ mod tests {
             dem: None,
         };
         let prior = [truth[0] + 11.5, truth[1] - 7.25];
-        let m = localize(&orbital, &rover, prior, &MatchParams::default()).unwrap();
+        let m = localize(&orbital, &rover, prior, &MatchSettings::default()).unwrap();
         let err = (m.position_m[0] - truth[0]).hypot(m.position_m[1] - truth[1]);
         assert!(err < 0.05, "{m:?}");
         assert_eq!(m.rejection, None, "{m:?}");
@@ -545,7 +545,7 @@ mod tests {
             ortho_valid: &valid,
             dem: None,
         };
-        let m = localize(&orbital, &rover, prior, &MatchParams::default()).unwrap();
+        let m = localize(&orbital, &rover, prior, &MatchSettings::default()).unwrap();
         assert!(m.rejection.is_some(), "{m:?}");
     }
 
@@ -557,7 +557,7 @@ mod tests {
         }
         assert_eq!(Method::from_name("MI"), Some(Method::MutualInformation));
         assert_eq!(Method::from_name("sad"), None);
-        assert_eq!(MatchParams::default().method, Method::Census);
+        assert_eq!(MatchSettings::default().method, Method::Census);
     }
 
     #[test]
@@ -581,9 +581,9 @@ mod tests {
         let prior = [truth[0] + 11.5, truth[1] - 7.25];
         let flat = Raster::filled(240, 240, geo, 128u8);
         for method in [Method::Ncc, Method::MutualInformation] {
-            let p = MatchParams {
+            let p = MatchSettings {
                 method,
-                ..MatchParams::default()
+                ..MatchSettings::default()
             };
             let rover = RoverImages {
                 ortho: &ortho,
@@ -646,7 +646,7 @@ mod tests {
             &orbital,
             &rover,
             [truth[0] - 6.0, truth[1] + 9.5],
-            &MatchParams::default(),
+            &MatchSettings::default(),
         )
         .unwrap();
         let err = (m.position_m[0] - truth[0]).hypot(m.position_m[1] - truth[1]);
@@ -669,7 +669,7 @@ mod tests {
             dem: None,
         };
         assert!(matches!(
-            localize(&orbital, &rover, [10.0, 10.0], &MatchParams::default()),
+            localize(&orbital, &rover, [10.0, 10.0], &MatchSettings::default()),
             Err(LocalizeError::WindowOffMap { .. })
         ));
         let none = vec![false; 240 * 240];
@@ -679,7 +679,7 @@ mod tests {
             dem: None,
         };
         assert!(matches!(
-            localize(&orbital, &rover, [75.0, 75.0], &MatchParams::default()),
+            localize(&orbital, &rover, [75.0, 75.0], &MatchSettings::default()),
             Err(LocalizeError::NoValidPixels)
         ));
         let coarse = Raster::filled(60, 60, GeoTransform::new(0.0, 150.0, 1.0), 0u8);
@@ -689,7 +689,7 @@ mod tests {
             dem: None,
         };
         assert!(matches!(
-            localize(&orbital, &rover, [75.0, 75.0], &MatchParams::default()),
+            localize(&orbital, &rover, [75.0, 75.0], &MatchSettings::default()),
             Err(LocalizeError::ResolutionMismatch { .. })
         ));
     }

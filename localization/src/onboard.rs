@@ -34,7 +34,7 @@
 //! (one flight-size localization on the development machine, measured by `cargo bench --bench
 //! localize`) × the run's work relative to flight size (search-window area). Link time is the
 //! flight size of the input files ([`HbsFile::link_bytes`]) and the real size of the result
-//! files at [`HbsParams::link_bytes_per_s`]: at 10 KB/s a flight-size run's inputs take
+//! files at [`HbsSettings::link_bytes_per_s`]: at 10 KB/s a flight-size run's inputs take
 //! [`FLIGHT_TRANSFER_S`], the paper's 30 minutes; a wider search sends a larger map chip.
 
 use std::sync::Arc;
@@ -45,11 +45,12 @@ use rand_chacha::ChaCha8Rng;
 use maps::{GeoTransform, MapLayers, Raster};
 
 use crate::benchmark_set::PATCH_MARGIN_M;
-use crate::hbs::{ActivityLog, HbsFile, HbsParams, LossReason, run_activity};
-use crate::matcher::{MatchParams, MatchResult, Method, OrbitalMap, RoverImages, localize};
+use crate::hbs::{ActivityLog, HbsFile, HbsSettings, LossReason, run_activity};
+use crate::matcher::{MatchResult, MatchSettings, Method, OrbitalMap, RoverImages, localize};
 use crate::synthetic::{
-    ORTHO_RESOLUTION_M_PER_PX, ORTHO_SIZE_PX, OrbitalParams, RoverImagingParams, RoverObservation,
-    SyntheticError, patch_grid, render_orbital_with, render_rover, truth_patch_on,
+    ORTHO_RESOLUTION_M_PER_PX, ORTHO_SIZE_PX, OrbitalSettings, RoverImagingSettings,
+    RoverObservation, SyntheticError, patch_grid, render_orbital_with, render_rover,
+    truth_patch_on,
 };
 
 mod cache;
@@ -67,15 +68,15 @@ pub use flight::{
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct OnboardSettings {
     /// Matcher settings; `search_radius_m` is replaced by the radius of each run and `method`
-    /// chooses census, NCC or mutual information (default: [`MatchParams::default`]).
-    pub matcher: MatchParams,
-    /// Orbital products (default: [`OrbitalParams::default`]).
-    pub orbital: OrbitalParams,
-    /// Rover imaging (default: [`RoverImagingParams::default`]).
-    pub rover: RoverImagingParams,
+    /// chooses census, NCC or mutual information (default: [`MatchSettings::default`]).
+    pub matcher: MatchSettings,
+    /// Orbital products (default: [`OrbitalSettings::default`]).
+    pub orbital: OrbitalSettings,
+    /// Rover imaging (default: [`RoverImagingSettings::default`]).
+    pub rover: RoverImagingSettings,
     /// The co-processor; `run_s` is replaced by the scaled run time of each run
-    /// (default: [`HbsParams::default`], no upsets).
-    pub hbs: HbsParams,
+    /// (default: [`HbsSettings::default`], no upsets).
+    pub hbs: HbsSettings,
     /// Smallest search radius, metres (default: 30, paper 000 §4).
     pub min_search_radius_m: f64,
     /// Largest search radius, metres (default: 100, paper 000 §4).
@@ -89,10 +90,10 @@ pub struct OnboardSettings {
 impl Default for OnboardSettings {
     fn default() -> Self {
         Self {
-            matcher: MatchParams::default(),
-            orbital: OrbitalParams::default(),
-            rover: RoverImagingParams::default(),
-            hbs: HbsParams::default(),
+            matcher: MatchSettings::default(),
+            orbital: OrbitalSettings::default(),
+            rover: RoverImagingSettings::default(),
+            hbs: HbsSettings::default(),
             min_search_radius_m: FLIGHT_SEARCH_RADIUS_M,
             max_search_radius_m: 100.0,
             hbs_slowdown: FLIGHT_RUN_S / MEASURED_FLIGHT_SIZE_RUN_S,
@@ -332,7 +333,7 @@ fn check_result(b: &[u8], max_sigma_m: f64) -> Result<AppliedFix, String> {
 }
 
 /// Decode the HBS input files and run the matcher (the algorithm the HBS runs, twice).
-fn hbs_algorithm(files: &[HbsFile], geos: &[GeoTransform; 4], params: &MatchParams) -> Vec<u8> {
+fn hbs_algorithm(files: &[HbsFile], geos: &[GeoTransform; 4], params: &MatchSettings) -> Vec<u8> {
     let run = || -> Result<MatchResult, String> {
         let (prior, radius, method) = parse_pose(&files[0].bytes).ok_or("unreadable pose file")?;
         let (ortho, ortho_valid) =
@@ -344,7 +345,7 @@ fn hbs_algorithm(files: &[HbsFile], geos: &[GeoTransform; 4], params: &MatchPara
         if ortho_valid.len() != ortho.data.len() || rover_dem_valid.len() != rover_dem.data.len() {
             return Err("malformed validity mask".into());
         }
-        let p = MatchParams {
+        let p = MatchSettings {
             search_radius_m: radius,
             method,
             ..*params
@@ -476,7 +477,7 @@ pub fn run_onboard_with(
         input_bytes: 0,
         link_bytes: 0,
     };
-    let params = MatchParams {
+    let params = MatchSettings {
         search_radius_m: radius_m,
         ..s.matcher
     };
@@ -549,7 +550,7 @@ pub fn run_onboard_with(
     let window_px = (2.0 * radius_m) / ORTHO_RESOLUTION_M_PER_PX + ORTHO_SIZE_PX as f64;
     let flight_window_px =
         (2.0 * FLIGHT_SEARCH_RADIUS_M) / ORTHO_RESOLUTION_M_PER_PX + ORTHO_SIZE_PX as f64;
-    let hbs = HbsParams {
+    let hbs = HbsSettings {
         run_s: s.hbs_slowdown * MEASURED_FLIGHT_SIZE_RUN_S * (window_px / flight_window_px).powi(2),
         ..s.hbs
     };

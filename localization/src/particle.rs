@@ -18,12 +18,12 @@
 //!     tiles if it is large), turned into a likelihood by [`likelihood_grid`] —
 //!     `exp(−(s − s_min) / T)`, convolved with a Gaussian of the registration error the score
 //!     cannot see — and read bilinearly at each particle. `T` and that σ
-//!     ([`ParticleParams::temperature`], [`ParticleParams::registration_sigma_m`]) are
+//!     ([`ParticleSettings::temperature`], [`ParticleSettings::registration_sigma_m`]) are
 //!     calibrated together on the synthetic benchmark set. Particles where nothing can be
 //!     scored get likelihood 0; if that leaves no weight the update is skipped and says why
 //!     ([`UpdateReport::skipped`]).
 //!   - Resampling (eq. 6) when the effective sample size falls below
-//!     [`ParticleParams::resample_threshold`] × N. In [`ParticleFilter::update`] the new
+//!     [`ParticleSettings::resample_threshold`] × N. In [`ParticleFilter::update`] the new
 //!     particles are drawn from the posterior on the surface's 25 cm grid (the likelihood
 //!     times a kernel density of the particles), so a census peak narrower than the spacing
 //!     of the particles is not missed; elsewhere from the weighted particles. Either way by
@@ -50,10 +50,10 @@
 //! error. The same seed and inputs give the same particles, bit for bit, on any thread count.
 //!
 //! ```
-//! use localization::particle::{Odometry, ParticleFilter, ParticleParams, Prior};
+//! use localization::particle::{Odometry, ParticleFilter, ParticleSettings, Prior};
 //!
 //! // 1000 particles around the odometry estimate after a 100 m drive with VO (a 5 m disc).
-//! let params = ParticleParams { particle_count: 1000, ..ParticleParams::default() };
+//! let params = ParticleSettings { particle_count: 1000, ..ParticleSettings::default() };
 //! let prior = Prior::from_uncertainty_disc([500.0, 300.0], 5.0);
 //! let mut pf = ParticleFilter::new(&prior, params, 7)?;
 //! // Drive 40 m east, all with VO: the disc grows by 2 m, σ per axis by 2/3 m.
@@ -97,7 +97,7 @@ pub use filter::{ParticleFilter, SkipReason, UpdateReport};
 pub use likelihood::likelihood_grid;
 pub use motion::{MotionModel, Odometry, Prior};
 pub use panorama::{PanoramaFix, PanoramaFixSettings, localize_panorama, no_gain};
-pub use params::{KldParams, ParticleParams, Resampling};
+pub use params::{KldSettings, ParticleSettings, Resampling};
 pub use posterior::{Ellipse, Mode, Posterior};
 pub use resample::{effective_sample_size, kld_sample_count, systematic_indices};
 

@@ -28,29 +28,29 @@
 //! real data gives 0.36 m mean (paper 000 §4). Each real error source is a field of the
 //! params structs, with unit, default and source (or "judgement") in its documentation:
 //!
-//! - orbital effective resolution: [`OrbitalParams::blur_sigma_px`] (σ 1 px, HiRISE MTF);
-//! - a different orbital epoch: smooth albedo change ([`OrbitalParams::albedo_change_sigma`]),
+//! - orbital effective resolution: [`OrbitalSettings::blur_sigma_px`] (σ 1 px, HiRISE MTF);
+//! - a different orbital epoch: smooth albedo change ([`OrbitalSettings::albedo_change_sigma`]),
 //!   dust devil tracks in the orbital image only (`dust_devil_tracks_*`), and sand ripples
 //!   (part of the truth on sand) migrated between epochs
-//!   ([`OrbitalParams::ripple_migration_m`]);
+//!   ([`OrbitalSettings::ripple_migration_m`]);
 //! - orthorectification / co-registration error: a smooth displacement field of the orbital
-//!   image ([`OrbitalParams::ortho_displacement_sigma_m`], `_wavelength_m`);
-//! - rover side: heading error ([`RoverImagingParams::heading_sigma_deg`]), scale error
-//!   ([`RoverImagingParams::scale_sigma`]), the mosaic centre off the rover's true position
-//!   ([`RoverImagingParams::mosaic_offset_sigma_m`]), recorded in
+//!   image ([`OrbitalSettings::ortho_displacement_sigma_m`], `_wavelength_m`);
+//! - rover side: heading error ([`RoverImagingSettings::heading_sigma_deg`]), scale error
+//!   ([`RoverImagingSettings::scale_sigma`]), the mosaic centre off the rover's true position
+//!   ([`RoverImagingSettings::mosaic_offset_sigma_m`]), recorded in
 //!   [`RoverObservation::geometry_errors`]; stereo range and height noise, dropouts and
 //!   per-wedge responses as before.
 //!
 //! Each can be switched off (set to 0) for ablations; see [`crate::benchmark_set`].
 //!
-//! Settings are plain structs ([`OrbitalParams`], [`RoverImagingParams`]); bad input is a
+//! Settings are plain structs ([`OrbitalSettings`], [`RoverImagingSettings`]); bad input is a
 //! [`SyntheticError`]. Every pixel is a pure function of (seed, position) through hash-based
 //! noise, and the few per-observation draws (sun, wedge responses) come from one
 //! `ChaCha8Rng`, so a seed gives byte-identical images on any number of threads.
 //!
 //! ```
 //! use localization::synthetic::{
-//!     OrbitalParams, RoverImagingParams, render_orbital, render_rover, truth_patch,
+//!     OrbitalSettings, RoverImagingSettings, render_orbital, render_rover, truth_patch,
 //! };
 //! use maps::{GeoTransform, MapLayers, Raster};
 //!
@@ -62,8 +62,8 @@
 //!     terrain: Raster::filled(200, 200, geo, 2),
 //! };
 //! let patch = truth_patch(&layers, [100.0, 100.0], 40.0, 7)?;
-//! let orbital = render_orbital(&patch, &OrbitalParams::default(), 8)?;
-//! let rover = render_rover(&patch, [100.3, 99.6], &RoverImagingParams::default(), 9)?;
+//! let orbital = render_orbital(&patch, &OrbitalSettings::default(), 8)?;
+//! let rover = render_rover(&patch, [100.3, 99.6], &RoverImagingSettings::default(), 9)?;
 //! assert_eq!((orbital.appearance.width, orbital.dem.width), (320, 80));
 //! assert_eq!((rover.ortho.width, rover.dem.width), (240, 60));
 //! assert!(rover.valid_fraction() > 0.3);
@@ -79,6 +79,7 @@
 //! - M. P. Golombek and D. Rapp, "Size-frequency distributions of rocks on Mars and Earth
 //!   analog sites", J. Geophys. Res. 102, 1997 (rock populations by terrain).
 
+mod image_ops;
 mod noise;
 mod orbital;
 mod rover;
@@ -87,12 +88,14 @@ mod shading;
 mod statics;
 mod truth;
 
+// The map package adds its sensor and DEM noise by world pixel with the same draws.
+pub(crate) use noise::gaussian;
 pub(crate) use orbital::render_orbital_with;
-pub use orbital::{OrbitalParams, OrbitalProducts, render_orbital};
+pub use orbital::{OrbitalProducts, OrbitalSettings, render_orbital};
 pub use rover::{
     RoverGeometryErrors, RoverLighting, RoverObservation, WedgeResponse, render_rover,
 };
-pub use rover_params::RoverImagingParams;
+pub use rover_params::RoverImagingSettings;
 pub use statics::TerrainStatics;
 pub use truth::{TruthPatch, truth_patch};
 pub(crate) use truth::{patch_grid, truth_patch_on};

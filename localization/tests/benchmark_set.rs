@@ -7,7 +7,7 @@
 use localization::benchmark_set::{
     BenchmarkMaps, BenchmarkReport, ErrorStats, TerrainKind, benchmark_cases, run_benchmark,
 };
-use localization::matcher::MatchParams;
+use localization::matcher::MatchSettings;
 
 fn print(report: &BenchmarkReport, seconds: f64) {
     let s = |name: &str, e: &ErrorStats| {
@@ -62,7 +62,7 @@ fn print(report: &BenchmarkReport, seconds: f64) {
 fn a_small_set_is_deterministic_and_its_stats_are_computed() {
     let maps = BenchmarkMaps::generate(1);
     let cases = benchmark_cases(24, 7);
-    let params = MatchParams::default();
+    let params = MatchSettings::default();
     let run = |threads: usize| {
         rayon::ThreadPoolBuilder::new()
             .num_threads(threads)

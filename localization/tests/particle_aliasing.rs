@@ -17,10 +17,10 @@
 use std::sync::OnceLock;
 use std::time::Instant;
 
-use localization::matcher::{MatchParams, OrbitalMap, Rejection, RoverImages, localize};
-use localization::particle::{Odometry, ParticleFilter, ParticleParams, Posterior, Prior};
+use localization::matcher::{MatchSettings, OrbitalMap, Rejection, RoverImages, localize};
+use localization::particle::{Odometry, ParticleFilter, ParticleSettings, Posterior, Prior};
 use localization::synthetic::{
-    OrbitalParams, OrbitalProducts, RoverImagingParams, RoverObservation, TruthPatch,
+    OrbitalProducts, OrbitalSettings, RoverImagingSettings, RoverObservation, TruthPatch,
     render_orbital, render_rover,
 };
 use maps::{GeoTransform, Raster};
@@ -157,10 +157,10 @@ fn scene() -> &'static Scene {
     static SCENE: OnceLock<Scene> = OnceLock::new();
     SCENE.get_or_init(|| {
         let patch = aliased_terrain();
-        let orbital = render_orbital(&patch, &OrbitalParams::default(), 1).unwrap();
-        let rover = RoverImagingParams {
+        let orbital = render_orbital(&patch, &OrbitalSettings::default(), 1).unwrap();
+        let rover = RoverImagingSettings {
             wedge_count: 5,
-            ..RoverImagingParams::default()
+            ..RoverImagingSettings::default()
         };
         let mid = render_rover(&patch, MID_M, &rover, 2).unwrap();
         let post = render_rover(&patch, POST_M, &rover, 3).unwrap();
@@ -191,20 +191,20 @@ fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
 /// panorama. Returns the filter after each panorama.
 fn run_filter(seed: u64, n: usize) -> (ParticleFilter, ParticleFilter) {
     let s = scene();
-    let params = ParticleParams {
+    let params = ParticleSettings {
         particle_count: n,
-        ..ParticleParams::default()
+        ..ParticleSettings::default()
     };
     let prior = Prior::from_uncertainty_disc(BELIEF_M, BELIEF_DISC_M);
     let mut pf = ParticleFilter::new(&prior, params, seed).unwrap();
     let r = pf
-        .update(&map(s), &images(&s.mid), &MatchParams::default())
+        .update(&map(s), &images(&s.mid), &MatchSettings::default())
         .unwrap();
     assert_eq!(r.skipped, None, "{r:?}");
     let after_mid = pf.clone();
     pf.predict(&Odometry::straight(ODOMETRY_M, 0.0)).unwrap();
     let r = pf
-        .update(&map(s), &images(&s.post), &MatchParams::default())
+        .update(&map(s), &images(&s.post), &MatchSettings::default())
         .unwrap();
     assert_eq!(r.skipped, None, "{r:?}");
     (after_mid, pf)
@@ -213,7 +213,7 @@ fn run_filter(seed: u64, n: usize) -> (ParticleFilter, ParticleFilter) {
 #[test]
 fn each_panorama_alone_is_ambiguous_to_the_matcher() {
     let s = scene();
-    let p = MatchParams::default();
+    let p = MatchSettings::default();
     // Mid-drive, from the rover's belief; post-drive, from that belief moved by the odometry.
     let post_prior = [BELIEF_M[0] + ODOMETRY_M[0], BELIEF_M[1] + ODOMETRY_M[1]];
     for (obs, prior, period) in [
@@ -298,7 +298,7 @@ fn the_sequence_resolves_what_one_panorama_cannot() {
 #[test]
 fn the_sequence_resolves_it_for_every_seed() {
     for seed in 0..10 {
-        let (mid, post) = run_filter(seed, ParticleParams::default().particle_count);
+        let (mid, post) = run_filter(seed, ParticleSettings::default().particle_count);
         let modes = mid.modes(3.0, 0.05).unwrap();
         let p = post.posterior();
         let err = dist(p.mean_m, POST_M);
@@ -336,10 +336,10 @@ fn update_timing() {
     for n in [1000, 5000] {
         for (label, disc_m) in [("30 m disc", BELIEF_DISC_M), ("6 m disc", 6.0)] {
             for threshold in [0.0, 0.5] {
-                let params = ParticleParams {
+                let params = ParticleSettings {
                     particle_count: n,
                     resample_threshold: threshold,
-                    ..ParticleParams::default()
+                    ..ParticleSettings::default()
                 };
                 let prior = Prior::from_uncertainty_disc(MID_M, disc_m);
                 let fresh = ParticleFilter::new(&prior, params, 1).unwrap();
@@ -350,7 +350,7 @@ fn update_timing() {
                     let mut pf = fresh.clone();
                     let t = Instant::now();
                     let r = pf
-                        .update(&map(s), &images(&s.mid), &MatchParams::default())
+                        .update(&map(s), &images(&s.mid), &MatchSettings::default())
                         .unwrap();
                     times.push(t.elapsed().as_secs_f64() * 1e3);
                     report = Some(r);

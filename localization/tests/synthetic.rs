@@ -4,21 +4,21 @@
 #![allow(clippy::unwrap_used)]
 
 use localization::synthetic::{
-    ORTHO_SIZE_PX, OrbitalParams, OrbitalProducts, ROVER_DEM_BLOCK_PX, RoverImagingParams,
+    ORTHO_SIZE_PX, OrbitalProducts, OrbitalSettings, ROVER_DEM_BLOCK_PX, RoverImagingSettings,
     RoverObservation, SyntheticError, TruthPatch, render_orbital, render_rover, truth_patch,
 };
-use maps::procedural::{TerrainParams, generate};
+use maps::procedural::{TerrainSettings, generate};
 use maps::{GeoTransform, MapLayers, Raster};
 use md5::{Digest, Md5};
 
 /// A 300 m procedural map (1 m pixels, x and y in 0..300 m).
 fn procedural_map(seed: u64) -> MapLayers {
-    generate(&TerrainParams {
+    generate(&TerrainSettings {
         seed,
         width_px: 300,
         height_px: 300,
         geo: GeoTransform::new(0.0, 300.0, 1.0),
-        ..TerrainParams::default()
+        ..TerrainSettings::default()
     })
 }
 
@@ -63,9 +63,9 @@ struct Scene {
     rover: RoverObservation,
 }
 
-fn scene(layers: &MapLayers, rover_m: [f64; 2], rover: &RoverImagingParams, seed: u64) -> Scene {
+fn scene(layers: &MapLayers, rover_m: [f64; 2], rover: &RoverImagingSettings, seed: u64) -> Scene {
     let patch = truth_patch(layers, rover_m, 60.0, seed).unwrap();
-    let orbital = render_orbital(&patch, &OrbitalParams::default(), seed + 1).unwrap();
+    let orbital = render_orbital(&patch, &OrbitalSettings::default(), seed + 1).unwrap();
     let rover = render_rover(&patch, rover_m, rover, seed + 2).unwrap();
     Scene {
         patch,
@@ -148,7 +148,7 @@ fn pearson(obs: &RoverObservation, orbital: &Raster<u8>, offset_m: [f64; 2]) -> 
 #[test]
 fn same_seed_gives_identical_bytes_and_another_seed_does_not() {
     let layers = procedural_map(4);
-    let p = RoverImagingParams::default();
+    let p = RoverImagingSettings::default();
     let a = scene(&layers, [150.2, 149.7], &p, 11);
     let b = scene(&layers, [150.2, 149.7], &p, 11);
     assert_eq!(digest(&a), digest(&b));
@@ -161,7 +161,7 @@ fn same_seed_gives_identical_bytes_and_another_seed_does_not() {
 #[test]
 fn one_and_two_threads_give_identical_bytes() {
     let layers = procedural_map(5);
-    let p = RoverImagingParams::default();
+    let p = RoverImagingSettings::default();
     let run = |threads: usize| {
         rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
@@ -182,7 +182,7 @@ fn golden_digest_of_a_hand_made_scene() {
     let s = scene(
         &hand_map(),
         [1100.0, 1900.0],
-        &RoverImagingParams::default(),
+        &RoverImagingSettings::default(),
         1,
     );
     assert_eq!(digest(&s), GOLDEN_DIGEST);
@@ -198,9 +198,9 @@ fn valid_fraction_is_plausible_and_grows_with_the_wedge_count() {
     let layers = procedural_map(6);
     let mut fractions = Vec::new();
     for wedge_count in [3, 4, 5] {
-        let p = RoverImagingParams {
+        let p = RoverImagingSettings {
             wedge_count,
-            ..RoverImagingParams::default()
+            ..RoverImagingSettings::default()
         };
         let mean: f64 = (0..4)
             .map(|k| {
@@ -222,7 +222,7 @@ fn valid_fraction_is_plausible_and_grows_with_the_wedge_count() {
 #[test]
 fn rover_body_and_far_pixels_are_invalid_near_pixels_mostly_valid() {
     let layers = procedural_map(7);
-    let s = scene(&layers, [160.3, 140.9], &RoverImagingParams::default(), 5);
+    let s = scene(&layers, [160.3, 140.9], &RoverImagingSettings::default(), 5);
     let obs = &s.rover;
     assert_eq!(obs.valid.len(), ORTHO_SIZE_PX * ORTHO_SIZE_PX);
     let (mut near, mut near_valid) = (0, 0);
@@ -263,12 +263,12 @@ fn pixels_behind_a_wall_are_occluded() {
         }
     }
     let patch = TruthPatch::from_rasters(height, Raster::filled(n, n, geo, 0.2f32));
-    let p = RoverImagingParams {
+    let p = RoverImagingSettings {
         stereo_dropout_at_max_range: 0.0,
         heading_sigma_deg: 0.0,
         scale_sigma: 0.0,
         mosaic_offset_sigma_m: 0.0,
-        ..RoverImagingParams::default()
+        ..RoverImagingSettings::default()
     };
     let obs = render_rover(&patch, rover_m, &p, 1).unwrap();
     let valid_at = |x: f64, y: f64| {
@@ -292,8 +292,8 @@ fn pixels_behind_a_wall_are_occluded() {
 fn orbital_dem_is_the_block_mean_of_the_truth() {
     let layers = procedural_map(8);
     let patch = truth_patch(&layers, [150.0, 150.0], 30.0, 2).unwrap();
-    let sigma = OrbitalParams::default().dem_noise_sigma_m;
-    let check = |p: &OrbitalParams, tol: f64| {
+    let sigma = OrbitalSettings::default().dem_noise_sigma_m;
+    let check = |p: &OrbitalSettings, tol: f64| {
         let o = render_orbital(&patch, p, 3).unwrap();
         assert_eq!((o.dem.width, o.dem.height), (60, 60));
         assert_eq!(o.dem.geo.resolution_m_per_px, 1.0);
@@ -314,14 +314,14 @@ fn orbital_dem_is_the_block_mean_of_the_truth() {
         }
         sum_err / 3600.0
     };
-    let bias = check(&OrbitalParams::default(), 5.0 * sigma);
+    let bias = check(&OrbitalSettings::default(), 5.0 * sigma);
     assert!(bias.abs() < 4.0 * sigma / 60.0, "{bias}");
     // Without DEM noise and without the ripples moving between epochs (the DTM is of the
     // orbital epoch), the DEM is exactly the block mean of the truth.
-    let exact = OrbitalParams {
+    let exact = OrbitalSettings {
         dem_noise_sigma_m: 0.0,
         ripple_migration_m: 0.0,
-        ..OrbitalParams::default()
+        ..OrbitalSettings::default()
     };
     check(&exact, 1e-4);
 }
@@ -329,7 +329,7 @@ fn orbital_dem_is_the_block_mean_of_the_truth() {
 #[test]
 fn rover_dem_matches_the_truth_within_stereo_noise_growing_with_range() {
     let layers = procedural_map(11);
-    let s = scene(&layers, [150.6, 150.2], &RoverImagingParams::default(), 8);
+    let s = scene(&layers, [150.6, 150.2], &RoverImagingSettings::default(), 8);
     let obs = &s.rover;
     let (n, m, b) = (ORTHO_SIZE_PX, obs.dem.width, ROVER_DEM_BLOCK_PX);
     let (mut near, mut far) = (Vec::new(), Vec::new());
@@ -380,7 +380,7 @@ fn rover_ortho_correlates_with_the_orbital_image_at_the_true_position() {
         let s = scene(
             &layers,
             rover_m,
-            &RoverImagingParams::default(),
+            &RoverImagingSettings::default(),
             40 + k as u64,
         );
         let at_truth = pearson(&s.rover, &s.orbital.appearance, [0.0, 0.0]);
@@ -404,18 +404,18 @@ fn bad_input_is_an_error() {
     ));
     let patch = truth_patch(&layers, [150.0, 150.0], 20.0, 1).unwrap();
     assert!(matches!(
-        render_rover(&patch, [100.0, 150.0], &RoverImagingParams::default(), 1),
+        render_rover(&patch, [100.0, 150.0], &RoverImagingSettings::default(), 1),
         Err(SyntheticError::RoverOutsidePatch { .. })
     ));
     let mut torn = patch.clone();
     torn.albedo.data.pop();
     assert!(matches!(
-        render_orbital(&torn, &OrbitalParams::default(), 1),
+        render_orbital(&torn, &OrbitalSettings::default(), 1),
         Err(SyntheticError::MalformedPatch { .. })
     ));
-    let bad = OrbitalParams {
+    let bad = OrbitalSettings {
         sun_elevation_deg: f64::NAN,
-        ..OrbitalParams::default()
+        ..OrbitalSettings::default()
     };
     let err = render_orbital(&patch, &bad, 1).unwrap_err();
     assert!(
@@ -428,7 +428,7 @@ fn bad_input_is_an_error() {
 /// Every default the field docs state (rapier's docs drifted from its `Default`).
 #[test]
 fn documented_defaults() {
-    let o = OrbitalParams::default();
+    let o = OrbitalSettings::default();
     assert_eq!(
         (
             o.sun_azimuth_deg,
@@ -464,7 +464,7 @@ fn documented_defaults() {
         ),
         (0.75, 0.2, 40.0)
     );
-    let r = RoverImagingParams::default();
+    let r = RoverImagingSettings::default();
     assert_eq!(
         (r.wedge_count, r.wedge_width_deg, r.mast_height_m),
         (4, 96.0, 2.0)
@@ -494,7 +494,7 @@ fn documented_defaults() {
 fn rover_geometry_errors_are_seeded_recorded_and_switchable() {
     let layers = procedural_map(12);
     let patch = truth_patch(&layers, [150.0, 150.0], 40.0, 1).unwrap();
-    let p = RoverImagingParams::default();
+    let p = RoverImagingSettings::default();
     let (mut heading, mut scale, mut offset) = (0.0f64, 0.0f64, 0.0f64);
     for seed in 0..16 {
         let e = render_rover(&patch, [150.0, 150.0], &p, seed)
@@ -507,7 +507,7 @@ fn rover_geometry_errors_are_seeded_recorded_and_switchable() {
     assert!((0.3..2.5).contains(&heading), "{heading}");
     assert!((0.001..0.015).contains(&scale), "{scale}");
     assert!((0.02..0.15).contains(&offset), "{offset}");
-    let exact = RoverImagingParams {
+    let exact = RoverImagingSettings {
         heading_sigma_deg: 0.0,
         scale_sigma: 0.0,
         mosaic_offset_sigma_m: 0.0,
@@ -529,28 +529,28 @@ fn orbital_epoch_changes_alter_the_image_and_switch_off() {
     // Sand in the east of the hand map: ripples live there.
     let patch = truth_patch(&hand_map(), [1170.0, 1900.0], 25.0, 2).unwrap();
     assert!(patch.sand.data.iter().any(|&s| s > 0.99));
-    let none = OrbitalParams {
+    let none = OrbitalSettings {
         albedo_change_sigma: 0.0,
         dust_devil_tracks_per_ha: 0.0,
         ripple_migration_m: 0.0,
         ortho_displacement_sigma_m: 0.0,
-        ..OrbitalParams::default()
+        ..OrbitalSettings::default()
     };
     let base = render_orbital(&patch, &none, 5).unwrap().appearance.data;
     for changed in [
-        OrbitalParams {
+        OrbitalSettings {
             albedo_change_sigma: 0.1,
             ..none
         },
-        OrbitalParams {
+        OrbitalSettings {
             dust_devil_tracks_per_ha: 20.0,
             ..none
         },
-        OrbitalParams {
+        OrbitalSettings {
             ripple_migration_m: 1.5,
             ..none
         },
-        OrbitalParams {
+        OrbitalSettings {
             ortho_displacement_sigma_m: 0.3,
             ..none
         },
@@ -561,7 +561,7 @@ fn orbital_epoch_changes_alter_the_image_and_switch_off() {
     }
     // The ripples are no longer one periodic train (several trains of different spacing,
     // warped crests): a shift of the mean wavelength (3 m) is not "no migration" any more.
-    let full = OrbitalParams {
+    let full = OrbitalSettings {
         ripple_migration_m: 3.0,
         ..none
     };

@@ -15,6 +15,8 @@
 //! - [`procedural`]: the seeded terrain generator the bundled scenario maps come from.
 //! - [`zone`]: keep-in / keep-out zones ([`ZoneSet`]) read from GeoJSON, with exact distance
 //!   queries (how far a point is from the nearest keep-out and from the keep-in edge).
+//! - [`zone_check`]: named points checked against a [`ZoneSet`] (`solsim zones check`), as a
+//!   table or JSON.
 //!
 //! ```
 //! use maps::{GeoTransform, Raster};
@@ -39,10 +41,11 @@ pub mod raster;
 pub mod raster_io;
 pub mod terrain;
 pub mod zone;
+pub mod zone_check;
 
 pub use mars_crs::{MapAnchor, MapCrs, MarsEquirectangular};
 pub use memory_budget::MemoryBudget;
 pub use raster::{GeoTransform, Raster};
 pub use raster_io::{MapLayers, RasterError};
-pub use terrain::TerrainClass;
+pub use terrain::{PerTerrain, TerrainClass};
 pub use zone::{Clearance, Zone, ZoneError, ZoneHandle, ZoneKind, ZoneSet, json_kind};

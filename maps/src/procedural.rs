@@ -1,13 +1,13 @@
 //! Seeded procedural Mars terrain: DEM, terrain classes and a hill-shaded appearance.
 //!
-//! [`generate`] turns [`TerrainParams`] into [`MapLayers`]:
+//! [`generate`] turns [`TerrainSettings`] into [`MapLayers`]:
 //! 1. **DEM** (metres) = base height + fBm relief + craters (parabolic bowl, raised rim,
 //!    ejecta falloff; fresh rims exceed 25° and become hazards) + long linear ridges + dune
 //!    ripples inside [`DuneField`]s, clamped to 0..=655 m so it fits 16-bit centimetre files.
 //! 2. **Terrain classes**: sand inside dune fields and sand patches; elsewhere sand in the
-//!    lowest-lying, flattest, sand-noisiest [`TerrainParams::sand_fraction`] of the map
+//!    lowest-lying, flattest, sand-noisiest [`TerrainSettings::sand_fraction`] of the map
 //!    (hollows, crater floors), bedrock in the highest-standing, steepest, rock-noisiest
-//!    [`TerrainParams::bedrock_fraction`] (rims, ridges, knobs), soil in the rest.
+//!    [`TerrainSettings::bedrock_fraction`] (rims, ridges, knobs), soil in the rest.
 //!    "Lying low" is measured against the mean height within 40 m.
 //! 3. **Appearance** (8-bit): Lambertian hill shade under the given sun, times an albedo by
 //!    class (sand dark, soil mid, bedrock bright) with broad albedo mottling, plus seeded
@@ -42,7 +42,7 @@ const HEIGHT_RANGE_M: (f64, f64) = (0.0, 655.0);
 const LOCAL_MEAN_RADIUS_M: f64 = 40.0;
 /// Wavelength of the noise that places sand and bedrock patches.
 const CLASS_NOISE_WAVELENGTH_M: f64 = 150.0;
-/// Cap on [`TerrainParams::ridge_count`], so a typo cannot stall generation.
+/// Cap on [`TerrainSettings::ridge_count`], so a typo cannot stall generation.
 const MAX_RIDGES: usize = 1000;
 /// Upper bound on the pixels sampled to set the class thresholds.
 const THRESHOLD_SAMPLE_PX: usize = 250_000;
@@ -104,7 +104,7 @@ impl DuneField {
 /// negative sizes by zero, so [`generate`] never panics.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(default, deny_unknown_fields)]
-pub struct TerrainParams {
+pub struct TerrainSettings {
     /// Master seed: the same parameters and seed give byte-identical layers. (default: 1)
     pub seed: u64,
     /// Map width in pixels (columns). (default: 1000)
@@ -147,7 +147,7 @@ pub struct TerrainParams {
     pub sun_elevation_deg: f64,
 }
 
-impl Default for TerrainParams {
+impl Default for TerrainSettings {
     fn default() -> Self {
         Self {
             seed: 1,
@@ -171,7 +171,7 @@ impl Default for TerrainParams {
     }
 }
 
-impl TerrainParams {
+impl TerrainSettings {
     /// A copy with every non-finite number replaced by its default and every size made
     /// non-negative and the ridges capped, so generation never meets NaN: what [`generate`]
     /// uses.
@@ -235,13 +235,13 @@ pub const MAX_LANDFORM_EVALUATIONS: u64 = 2_000_000_000;
 /// patch at every pixel. Computed from the craters as drawn (cheap: no pixel is generated), so
 /// a recipe can be refused before its generation starts.
 #[must_use]
-pub fn landform_evaluations(params: &TerrainParams) -> u64 {
+pub fn landform_evaluations(params: &TerrainSettings) -> u64 {
     Landforms::evaluations(&params.sanitized())
 }
 
 /// Rows [`generate_observed`] reports: each of its three passes over the map's rows.
 #[must_use]
-pub fn progress_rows(params: &TerrainParams) -> u64 {
+pub fn progress_rows(params: &TerrainSettings) -> u64 {
     3 * params.sanitized().height_px as u64
 }
 
@@ -250,14 +250,14 @@ pub fn progress_rows(params: &TerrainParams) -> u64 {
 /// All layers share `params.geo` and size. A zero width or height gives empty layers.
 /// 1500 × 1500 px takes well under a second in release builds.
 #[must_use]
-pub fn generate(params: &TerrainParams) -> MapLayers {
+pub fn generate(params: &TerrainSettings) -> MapLayers {
     generate_observed(params, &|| {})
 }
 
 /// [`generate`], calling `on_row` as each row of each of its three passes is done
 /// ([`progress_rows`] calls in all, from any thread; for a progress bar).
 #[must_use]
-pub fn generate_observed(params: &TerrainParams, on_row: &(dyn Fn() + Sync)) -> MapLayers {
+pub fn generate_observed(params: &TerrainSettings, on_row: &(dyn Fn() + Sync)) -> MapLayers {
     let p = params.sanitized();
     let (w, h) = (p.width_px, p.height_px);
     let geo = p.geo;
@@ -564,13 +564,13 @@ mod tests {
 
     #[test]
     fn sanitized_params_are_finite_and_in_range() {
-        let p = TerrainParams {
+        let p = TerrainSettings {
             relief_m: f64::NAN,
             crater_density_per_km2: -4.0,
             sun_elevation_deg: 120.0,
             bedrock_fraction: 7.0,
             geo: GeoTransform::new(f64::INFINITY, 0.0, 0.0),
-            ..TerrainParams::default()
+            ..TerrainSettings::default()
         }
         .sanitized();
         assert_eq!(p.relief_m, 15.0);

@@ -22,6 +22,7 @@ mod map_layers;
 mod nodata;
 mod png;
 mod sidecar;
+mod tiff_tags;
 
 use std::fs::{self, File};
 use std::io::{BufWriter, Write};

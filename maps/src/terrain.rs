@@ -1,4 +1,5 @@
-//! Terrain classes of the orbital terrain-class map (sand, soil, bedrock).
+//! Terrain classes of the orbital terrain-class map (sand, soil, bedrock), and a value per class
+//! ([`PerTerrain`]: VO failure, slip, path cost, metres driven on each).
 
 /// Surface type of a map pixel. Drives Visual Odometry success and slip (paper 003 §4).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
@@ -49,6 +50,52 @@ impl TerrainClass {
             TerrainClass::Soil => "soil",
             TerrainClass::Bedrock => "bedrock",
         }
+    }
+}
+
+/// A value per terrain class.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct PerTerrain {
+    /// Value on sand.
+    pub sand: f64,
+    /// Value on soil.
+    pub soil: f64,
+    /// Value on bedrock.
+    pub bedrock: f64,
+}
+
+impl PerTerrain {
+    /// The value for `class`.
+    #[must_use]
+    pub fn get(&self, class: TerrainClass) -> f64 {
+        match class {
+            TerrainClass::Sand => self.sand,
+            TerrainClass::Soil => self.soil,
+            TerrainClass::Bedrock => self.bedrock,
+        }
+    }
+
+    /// Add `v` to the value of `class`.
+    pub fn add(&mut self, class: TerrainClass, v: f64) {
+        match class {
+            TerrainClass::Sand => self.sand += v,
+            TerrainClass::Soil => self.soil += v,
+            TerrainClass::Bedrock => self.bedrock += v,
+        }
+    }
+
+    /// The sum over the classes.
+    #[must_use]
+    pub fn total(&self) -> f64 {
+        self.sand + self.soil + self.bedrock
+    }
+}
+
+impl std::ops::AddAssign for PerTerrain {
+    fn add_assign(&mut self, other: Self) {
+        self.sand += other.sand;
+        self.soil += other.soil;
+        self.bedrock += other.bedrock;
     }
 }
 

@@ -2,18 +2,18 @@
 //! physical ranges, class shares, forced sand, and round trips through the map files.
 #![allow(clippy::unwrap_used)]
 
-use maps::procedural::{DuneField, TerrainParams, generate};
+use maps::procedural::{DuneField, TerrainSettings, generate};
 use maps::raster_io::{dem_from_cm, dem_to_cm};
 use maps::{GeoTransform, MapLayers, TerrainClass};
 
-fn small(seed: u64) -> TerrainParams {
-    TerrainParams {
+fn small(seed: u64) -> TerrainSettings {
+    TerrainSettings {
         seed,
         width_px: 400,
         height_px: 300,
         geo: GeoTransform::new(2000.0, 7000.0, 1.0),
         crater_density_per_km2: 20.0,
-        ..TerrainParams::default()
+        ..TerrainSettings::default()
     }
 }
 
@@ -58,7 +58,7 @@ fn same_seed_same_bytes_different_seed_different_map() {
 
 #[test]
 fn thread_count_does_not_change_a_single_bit() {
-    let p = TerrainParams {
+    let p = TerrainSettings {
         dune_fields: vec![DuneField::new([2200.0, 6850.0], 80.0, 30.0)],
         ..small(3)
     };
@@ -84,7 +84,7 @@ fn thread_count_does_not_change_a_single_bit() {
 /// sin/cos/powi differ in the last bit in the few set-up computations that use them.
 #[test]
 fn golden_digest_for_seed_42() {
-    let p = TerrainParams {
+    let p = TerrainSettings {
         seed: 42,
         width_px: 128,
         height_px: 96,
@@ -92,7 +92,7 @@ fn golden_digest_for_seed_42() {
         crater_density_per_km2: 200.0,
         ridge_count: 1,
         dune_fields: vec![DuneField::new([30.0, 30.0], 25.0, 60.0)],
-        ..TerrainParams::default()
+        ..TerrainSettings::default()
     };
     let got = digest(&generate(&p));
     assert_eq!(
@@ -115,12 +115,12 @@ fn heights_stay_in_the_16_bit_centimetre_range() {
     assert!(lo > 40.0 && hi < 160.0 && hi - lo > 5.0, "{lo}..{hi}");
 
     // Extreme parameters are clamped, not wrapped.
-    let deep = TerrainParams {
+    let deep = TerrainSettings {
         base_height_m: 2.0,
         relief_m: 50.0,
         ..small(11)
     };
-    let high = TerrainParams {
+    let high = TerrainSettings {
         base_height_m: 650.0,
         relief_m: 50.0,
         ..small(11)
@@ -138,7 +138,7 @@ fn heights_stay_in_the_16_bit_centimetre_range() {
 
 #[test]
 fn class_shares_follow_the_targets() {
-    let m = generate(&TerrainParams {
+    let m = generate(&TerrainSettings {
         width_px: 600,
         height_px: 600,
         ..small(5)
@@ -149,7 +149,7 @@ fn class_shares_follow_the_targets() {
     assert!((0.45..=0.65).contains(&soil), "soil {soil}");
     assert!((0.25..=0.35).contains(&rock), "bedrock {rock}");
 
-    let p = TerrainParams {
+    let p = TerrainSettings {
         sand_fraction: 0.0,
         bedrock_fraction: 1.0,
         ..small(5)
@@ -171,7 +171,7 @@ fn dune_fields_and_sand_patches_are_sand_and_dunes_ripple() {
         ..DuneField::default()
     };
     let patch = ([2330.0, 6780.0], 30.0);
-    let p = TerrainParams {
+    let p = TerrainSettings {
         dune_fields: vec![field.clone()],
         sand_patches: vec![patch],
         ..small(9)
@@ -219,7 +219,7 @@ fn dem_survives_centimetre_quantisation() {
 #[test]
 fn written_map_reloads_identically() {
     let dir = tempfile::tempdir().unwrap();
-    let m = generate(&TerrainParams {
+    let m = generate(&TerrainSettings {
         dune_fields: vec![DuneField::new([2100.0, 6900.0], 60.0, 100.0)],
         ..small(17)
     });
@@ -248,7 +248,7 @@ fn written_map_reloads_identically() {
 #[test]
 fn crater_rims_are_steep_somewhere() {
     // Fresh crater walls reach well past 25°: the hazards the planner must avoid.
-    let p = TerrainParams {
+    let p = TerrainSettings {
         crater_density_per_km2: 60.0,
         ..small(21)
     };
@@ -263,7 +263,7 @@ fn crater_rims_are_steep_somewhere() {
 
 #[test]
 fn degenerate_parameters_do_not_panic() {
-    let empty = generate(&TerrainParams {
+    let empty = generate(&TerrainSettings {
         width_px: 0,
         ..small(1)
     });
@@ -272,13 +272,13 @@ fn degenerate_parameters_do_not_panic() {
             && empty.appearance.data.is_empty()
             && empty.terrain.data.is_empty()
     );
-    let one = generate(&TerrainParams {
+    let one = generate(&TerrainSettings {
         width_px: 1,
         height_px: 1,
         ..small(1)
     });
     assert_eq!(one.terrain.data.len(), 1);
-    let nan = TerrainParams {
+    let nan = TerrainSettings {
         geo: GeoTransform::new(f64::NAN, 0.0, -3.0),
         relief_m: f64::NAN,
         crater_radius_min_m: 80.0,
@@ -298,7 +298,7 @@ fn degenerate_parameters_do_not_panic() {
 
 #[test]
 fn documented_defaults_hold() {
-    let p = TerrainParams::default();
+    let p = TerrainSettings::default();
     assert_eq!((p.seed, p.width_px, p.height_px), (1, 1000, 1000));
     assert_eq!(p.geo, GeoTransform::new(0.0, 1000.0, 1.0));
     assert_eq!((p.base_height_m, p.relief_m), (100.0, 15.0));

@@ -4,6 +4,7 @@
 //! Every activity becomes one [`Task`], except a drive, which becomes a chain of segment
 //! tasks (each a precondition of the next). Tasks are named by [`TaskId`] handles.
 
+use crate::curve::CampaignCurve;
 use crate::error::PlanError;
 use crate::instance_checks::{campaign_curve, check_activity, check_problem, find_cycle};
 use crate::problem::{ActivityKind, Problem, Timeline};
@@ -70,48 +71,6 @@ impl Task {
     #[must_use]
     pub fn energy_wh(&self) -> f64 {
         self.power_w * self.duration_s as f64 / 3600.0
-    }
-}
-
-/// A campaign's utility curve, resolved to exact micro-points.
-#[derive(Debug, Clone, PartialEq)]
-pub struct CampaignCurve {
-    /// Campaign id.
-    pub id: String,
-    /// Tier index (0 is tier 1).
-    pub tier: usize,
-    /// `utility_micro[n]` is the utility of `n` members for `n ≤ max_count`; beyond, it stays
-    /// at `utility_micro[max_count]`.
-    pub utility_micro: Vec<i64>,
-}
-
-impl CampaignCurve {
-    /// Utility of `n` members, micro-points.
-    #[must_use]
-    pub fn utility(&self, n: u32) -> i64 {
-        let i = (n as usize).min(self.utility_micro.len() - 1);
-        self.utility_micro[i]
-    }
-
-    /// An optimistic utility per further member once `n` are in the plan: the steepest
-    /// average increment `max_m (f(n+m) − f(n)) / m`, so `f(n+m) − f(n) ≤ m × slope` for every
-    /// `m` (valid even below `min_count`, where `f` is not concave).
-    #[must_use]
-    pub fn optimistic_slope(&self, n: u32) -> f64 {
-        let base = self.utility(n);
-        let max = self.utility_micro.len() - 1;
-        let mut best = 0.0f64;
-        for k in (n as usize + 1)..=max {
-            let m = (k - n as usize) as f64;
-            best = best.max((self.utility_micro[k] - base) as f64 / m);
-        }
-        best
-    }
-
-    /// Members that can still add utility once `n` are in the plan.
-    #[must_use]
-    pub fn remaining_cap(&self, n: u32) -> u32 {
-        (self.utility_micro.len() as u32 - 1).saturating_sub(n)
     }
 }
 
@@ -353,13 +312,6 @@ impl Instance {
     #[must_use]
     pub fn mandatory_tasks(&self) -> &[TaskId] {
         &self.mandatory
-    }
-
-    /// The task of the activity named `id` (for a drive, its last segment).
-    #[must_use]
-    pub fn task_by_activity_id(&self, id: &str) -> Option<TaskId> {
-        let a = self.problem.activities.iter().position(|a| a.id == id)?;
-        self.activity_tasks[a].last().copied()
     }
 }
 

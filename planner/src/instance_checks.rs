@@ -1,8 +1,8 @@
 //! Input checks behind [`Instance::new`](crate::Instance::new): every range, window and
 //! reference of a [`Problem`], each failure a [`PlanError`] naming what to fix.
 
+use crate::curve::CampaignCurve;
 use crate::error::PlanError;
-use crate::instance::CampaignCurve;
 use crate::problem::{ActivityKind, Problem, Timeline};
 use crate::value::{MAX_TASKS, MAX_TIERS, MAX_UTILITY, micro};
 

@@ -111,6 +111,7 @@
 
 mod bound;
 mod campaign;
+mod curve;
 mod error;
 mod generate;
 mod instance;
@@ -125,9 +126,10 @@ mod value;
 
 pub use bound::optimistic_bound;
 pub use campaign::{clip_to_window, periodic_instances, state_based_instances};
+pub use curve::CampaignCurve;
 pub use error::PlanError;
 pub use generate::{GeneratorSettings, b6_problem, generate};
-pub use instance::{CampaignCurve, Instance, Task, TaskId};
+pub use instance::{Instance, Task, TaskId};
 pub use plan::{BoundKind, Plan, PlanOutcome, PlanStatus, PlanStep, SearchSettings, SearchStats};
 pub use problem::{Activity, ActivityKind, Campaign, CampaignIntent, Drive, Problem, Timeline};
 pub use repair::{RepairOutcome, repair};

@@ -1,35 +1,30 @@
 //! # sim — the sol-by-sol traverse simulator
 //!
-//! One sol flows: the [`calendar`] says what the uplink knows → the [`strategy`] decides whether
-//! the rover drives and how it is localized → [`autonav`] drives the route in steps on the
-//! [`planning_grid`] (zones grown by the [`uncertainty`] disc, slope hazards), faulting with
-//! `NO_PATH` when no path is left → end-of-sol localization ([`localizer`]) → a [`SolRecord`] in
-//! the [`outcome`] → next sol. [`campaign::run_campaign`] runs all of it.
+//! One sol flows: the [`operations::calendar`] says what the uplink knows → the strategy's
+//! [`operations::policy`] decides whether the rover drives and how it is localized → the sol's
+//! activity plan ([`operations::sol_plan`]) runs step by step: [`rover::autonav`] drives the
+//! route on the [`grid::PlanningGrid`] (zones grown by the [`rover::uncertainty`] disc, slope
+//! hazards), faulting with `NO_PATH` when no path is left; the onboard [`localizers`] fix the
+//! position after the drive → a [`run::outcome::SolRecord`] → next sol. A [`run::Simulation`]
+//! steps it a sol at a time; [`run::run_campaign`] runs it to the end.
 //!
-//! - [`uncertainty`]: `r = margin + k_vo·d_vo + k_novo·d_novo` and its reset events.
-//! - [`pose`]: the true pose and the rover's estimate, kept in different types.
-//! - [`planning_grid`]: per-cell clearance to the zones, slope hazards, terrain class.
-//! - [`edt`], [`astar`], [`widest_path`]: the grid algorithms (exact EDT, A*, bottleneck path).
-//! - [`autonav`]: one sol's drive: plan, step, VO, slip, faults.
-//! - [`errors`]: what the estimate does not know (heading, VO scale and failures, slip, ground
-//!   localization), calibrated and stress presets.
-//! - [`localizer`]: the statistical onboard localizer (0.36 m mean / 0.93 m p99, paper 000 §4).
-//! - [`calendar`], [`strategy`]: operations calendar, data availability and the five strategies;
-//!   [`policy`]: what each strategy decides (which sols drive, when a drive is cut, when the
-//!   rover localizes), in one place.
-//! - [`sol_plan`]: each drive sol's activity plan (heating, drive, imaging, passes, science, the
-//!   onboard localization chain) from the `planner` crate, executed step by step with repairs
-//!   and replans ([`sol_plan::SolExecution`]), every plan validated.
-//! - [`science`]: campaign intents that outlive a sol (goal-set targets on the map, periodic,
-//!   state-based) and the candidates they offer each sol.
-//! - [`campaign`]: the multi-sol runner; [`outcome`]: what it reports; [`campaign_error`]:
-//!   [`Campaign::validate`] for campaigns built in code.
-//! - [`physics`]: the rover in rapier on terramechanics soils; [`slip_profile`]: the
-//!   slip-versus-slope tables it measures, which the traverse reads.
-//! - [`seeds`]: the one derivation of every random stream from (scenario seed, purpose, run).
+//! The folders, by domain:
+//!
+//! - [`grid`]: the planning grid and the grid algorithms (exact EDT, A*, bottleneck path).
+//! - [`rover`]: AutoNav, the true pose and the estimate, the uncertainty disc, the errors it
+//!   must bound, the rover in rapier and the slip profiles it measures.
+//! - [`operations`]: the calendar (typed in or computed from Mars time), the five strategies and
+//!   their policy, each drive sol's activity plan, onboard science campaigns.
+//! - [`localizers`]: the [`localizers::Localizer`] trait and the built-in localizers
+//!   (statistical, image matching, particle filter, EKF), one file each.
+//! - [`run`]: the [`run::Simulation`], one drive sol executed, the route's passage
+//!   clearances, what a run reports.
+//! - [`time`]: sols and LMST ([`time::SolSeconds`]), Mars time from UTC, Earth calendars.
+//! - [`settings`]: [`Settings`], everything a run needs but its seeds, and its checks.
+//! - [`seeds`]: [`seeds::RunSeeds`], every random stream of a run from (scenario seed, run).
 //!
 //! ```
-//! use sim::uncertainty::{UncertaintyModel, UncertaintyState};
+//! use sim::rover::uncertainty::{UncertaintyModel, UncertaintyState};
 //!
 //! // Paper 000 Fig. 2: 655.8 m over sols 717-719, 0.289 m of it without VO.
 //! let model = UncertaintyModel::default(); // 5 % with VO, 50 % without
@@ -41,38 +36,18 @@
 //! ```
 #![warn(missing_docs)]
 
-pub mod astar;
-pub mod autonav;
-pub mod calendar;
-pub mod campaign;
-pub mod campaign_error;
-pub mod earth_time;
-pub mod edt;
-pub mod errors;
-mod filter_localization;
-pub mod localizer;
-pub mod mars_time;
-pub mod ops_calendar;
-pub mod outcome;
-pub mod physics;
-pub mod planning_grid;
-pub mod policy;
-pub mod pose;
-pub mod science;
+pub mod grid;
+pub mod localizers;
+pub mod operations;
+pub mod rover;
+pub mod run;
 pub mod seeds;
-pub mod slip_profile;
-pub mod sol_plan;
-mod sol_run;
-pub mod strategy;
+pub mod settings;
 pub mod time;
-pub mod uncertainty;
-pub mod widest_path;
 
-pub use autonav::RoverParams;
-pub use calendar::{Calendar, SolEntry};
-pub use campaign::{Campaign, run_campaign};
-pub use campaign_error::CampaignError;
-pub use outcome::{CampaignOutcome, DriveEnd, Fault, FaultKind, SolRecord, Totals};
-pub use planning_grid::PlanningGrid;
-pub use strategy::Strategy;
-pub use uncertainty::UncertaintyModel;
+pub use grid::PlanningGrid;
+pub use operations::{Calendar, SolEntry, Strategy};
+pub use rover::{RoverSettings, UncertaintyModel};
+pub use run::outcome::{CampaignOutcome, DriveEnd, Fault, FaultKind, SolRecord, Totals};
+pub use run::{Simulation, run_campaign};
+pub use settings::{FieldError, PhysicalRange, Settings, SettingsError};

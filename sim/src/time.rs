@@ -37,6 +37,9 @@
 
 use std::ops::{Add, Sub};
 
+pub mod earth_time;
+pub mod mars_time;
+
 /// Length of a sol in SI seconds.
 pub const SOL_S: u32 = 88_775;
 

@@ -7,7 +7,7 @@
 use std::path::Path;
 
 use maps::{GeoTransform, ZoneSet};
-use sim::planning_grid::PlanningGrid;
+use sim::grid::planning_grid::PlanningGrid;
 
 fn check(zones_file: &str, geo: GeoTransform, width: usize, height: usize) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))

@@ -8,12 +8,14 @@ use std::path::Path;
 use maps::{GeoTransform, ZoneSet};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use sim::astar::AStar;
-use sim::autonav::{DriveContext, DriveLimits, RoverParams, RoverState, VoSource, drive_sol};
-use sim::outcome::FaultKind;
-use sim::planning_grid::PlanningGrid;
-use sim::uncertainty::UncertaintyModel;
-use sim::widest_path::widest_path;
+use sim::grid::astar::AStar;
+use sim::grid::planning_grid::PlanningGrid;
+use sim::grid::widest_path::widest_path;
+use sim::rover::autonav::{
+    DriveContext, DriveLimits, RoverSettings, RoverState, VoSource, drive_sol,
+};
+use sim::rover::uncertainty::UncertaintyModel;
+use sim::run::outcome::FaultKind;
 
 const FOOTPRINT_M: f64 = 1.5;
 const RES_M: f64 = 1.0;
@@ -130,7 +132,7 @@ fn passage_closes_when_the_grown_keep_outs_meet() {
 /// Drive 160 m north through the passage with a fixed uncertainty `r0` (growth switched off).
 fn drive_with(grid: &PlanningGrid, r0: f64) -> Option<FaultKind> {
     let route = [[50.0, 20.0], [50.0, 180.0]];
-    let rover = RoverParams::default();
+    let rover = RoverSettings::default();
     let model = UncertaintyModel {
         k_vo: 0.0,
         k_novo: 0.0,

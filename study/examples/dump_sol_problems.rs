@@ -9,7 +9,7 @@
 //! Runs every strategy of each `SCENARIO` (default: `scenarios/rapid-traverse-379-409.toml` and
 //! `scenarios/self-reliant-campaign.toml`; `replay` only where the scenario has a record) under
 //! the scenario's own seed, capturing each drive sol's first planning problem
-//! ([`sim::sol_plan::capture_sol_problems`]). Every distinct problem (byte-identical JSON
+//! ([`sim::operations::sol_plan::capture_sol_problems`]). Every distinct problem (byte-identical JSON
 //! counts once, under the first name that produced it) is written as
 //! `<scenario>_<strategy>_sol<N>.json` (`+` in a strategy name becomes `-`), and
 //! `planner::plan` with no node budget writes `<stem>.planner.json`: `{status, value_micro,
@@ -63,8 +63,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .to_string_lossy()
             .to_string();
         for strategy in scenario.strategies() {
-            let (_, problems) =
-                sim::sol_plan::capture_sol_problems(|| scenario.run(strategy, scenario.seed()));
+            let (_, problems) = sim::operations::sol_plan::capture_sol_problems(|| {
+                scenario.run(strategy, scenario.seeds())
+            });
             for (sol, problem) in problems {
                 let json = serde_json::to_string_pretty(&problem)?;
                 let stem = format!("{name}_{}_sol{sol}", strategy.name().replace('+', "-"));

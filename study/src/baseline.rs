@@ -3,16 +3,19 @@
 //! per sol.
 //!
 //! A baseline more cautious than reality inflates every gain credited to onboard localization
-//! (DESIGN.md): `ground` must be able to drive every sol the team drove. Two views of `ground`
-//! are set beside the record: the **calendar's rule** ([`sim::policy::Policy::calendar_schedule`],
+//! (docs/design.md, "Operations strategies, precisely"): `ground` must be able to drive every sol the team drove. Two views of `ground`
+//! are set beside the record: the **calendar's rule** ([`sim::operations::policy::Policy::calendar_schedule`],
 //! every commanded drive assumed to happen: what the calendar alone decides) and the
 //! **simulated** strategy over `runs` seeded worlds (where faults, the route's end and the
 //! planners' passage limits may also stop it), run 0 in full and the share of runs it drove.
 
-use sim::Strategy;
-use sim::policy::Policy;
+use std::fmt::Write as _;
+use std::path::Path;
 
-use crate::Scenario;
+use sim::Strategy;
+use sim::operations::policy::Policy;
+
+use crate::{Scenario, ScenarioError};
 
 /// Who drove a sol.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -89,13 +92,99 @@ impl Baseline {
             .map(|r| r.sol)
             .collect()
     }
+
+    /// The printed table: per sol, the planning day, the record's metres, what ground drove
+    /// (run 0) and how often, who drove and the rule; then the sols by agreement and each
+    /// disagreement.
+    #[must_use]
+    pub fn text(&self) -> String {
+        let mut t = String::new();
+        let _ = writeln!(
+            t,
+            "ground beside the record: {} ({} runs of ground; run 0 in the table)",
+            self.scenario, self.runs
+        );
+        let _ = writeln!(
+            t,
+            "{:>5}  {:<14}  {:>6}  {:>8}  {:>8}  {:>6}  {:<11}  rule",
+            "sol", "planned (PT)", "plan", "record m", "ground m", "drove", "who"
+        );
+        for r in &self.rows {
+            let plan = match (r.uplink, r.restricted) {
+                (true, true) => "restr",
+                (true, false) => "uplink",
+                (false, _) => "",
+            };
+            let rule = r
+                .ground_reason
+                .clone()
+                .or_else(|| r.calendar_rule.clone())
+                .unwrap_or_else(|| "drives".to_owned());
+            let _ = writeln!(
+                t,
+                "{:>5}  {:<14}  {plan:>6}  {:>8.1}  {:>8.1}  {:>5.0}%  {:<11}  {rule}",
+                r.sol,
+                r.planning_day.as_deref().unwrap_or(""),
+                r.record_m,
+                r.ground_m,
+                100.0 * r.ground_drove_share,
+                r.agreement.name()
+            );
+        }
+        let list = |v: Vec<u32>| {
+            if v.is_empty() {
+                "none".to_owned()
+            } else {
+                v.iter()
+                    .map(ToString::to_string)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            }
+        };
+        let _ = writeln!(t, "both drove: {}", list(self.sols(Agreement::Both)));
+        let _ = writeln!(t, "record only: {}", list(self.sols(Agreement::RecordOnly)));
+        let _ = writeln!(t, "model only: {}", list(self.sols(Agreement::ModelOnly)));
+        for r in self
+            .rows
+            .iter()
+            .filter(|r| matches!(r.agreement, Agreement::RecordOnly | Agreement::ModelOnly))
+        {
+            let _ = writeln!(
+                t,
+                "disagreement on sol {}: {} (record {:.1} m, ground {:.1} m): {}",
+                r.sol,
+                r.agreement.name(),
+                r.record_m,
+                r.ground_m,
+                r.ground_reason.as_deref().unwrap_or("ground drove")
+            );
+        }
+        t
+    }
+}
+
+/// Checks that `scenario` (read from `path`) has a record to set ground beside.
+///
+/// # Errors
+/// A scenario without `historic_distance_m` per sol, named by `path`.
+pub fn require_record(scenario: &Scenario, path: &Path) -> Result<(), ScenarioError> {
+    if scenario.has_history {
+        Ok(())
+    } else {
+        Err(ScenarioError::field(
+            path,
+            "sols",
+            "a scenario with a record (historic_distance_m per sol)",
+            "none",
+        ))
+    }
 }
 
 /// Set `ground` beside the scenario's record over run indices `0..runs`.
 #[must_use]
 pub fn ground_vs_record(scenario: &Scenario, runs: u64) -> Baseline {
-    let cal = &scenario.campaign.calendar;
-    let policy = Policy::new(Strategy::Ground, scenario.campaign.rules);
+    let cal = &scenario.settings.calendar;
+    let policy = Policy::new(Strategy::Ground, scenario.settings.rules);
     let rule = policy.calendar_schedule(cal);
     let outcomes: Vec<_> = (0..runs.max(1))
         .map(|run| scenario.run_index(Strategy::Ground, run))
@@ -122,7 +211,8 @@ pub fn ground_vs_record(scenario: &Scenario, runs: u64) -> Baseline {
                 .and_then(|c| c.sols.get(i));
             BaselineRow {
                 sol: e.sol,
-                planning_day: computed.map(sim::ops_calendar::ComputedSol::planning_day_text),
+                planning_day: computed
+                    .map(sim::operations::ops_calendar::ComputedSol::planning_day_text),
                 uplink: e.uplink,
                 restricted: e.restricted,
                 record_m,

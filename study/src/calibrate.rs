@@ -2,15 +2,17 @@
 //! here, by the command its documentation names, so anyone can check it.
 //!
 //! - [`calibrate_vo`] (`solsim calibrate vo SCENARIO`): the VO failure probability on soil,
-//!   [`sim::errors::VO_FAILURE_SOIL`], from a record's distance without VO.
+//!   [`sim::rover::errors::VO_FAILURE_SOIL`], from a record's distance without VO.
 //! - [`calibrate_drive_rate`] (`solsim calibrate drive-rate SCENARIO`): the AutoNav rate at
 //!   which the ground strategy drives the record's metres per drive sol.
 
+use std::fmt::Write as _;
+
 use rayon::prelude::*;
 
+use maps::PerTerrain;
 use sim::Strategy;
-use sim::autonav::PerTerrain;
-use sim::errors::{VO_FAILURE_RELATIVE, VO_FAILURE_SOIL};
+use sim::rover::errors::{VO_FAILURE_RELATIVE, VO_FAILURE_SOIL};
 
 use crate::Scenario;
 
@@ -79,7 +81,7 @@ pub fn calibrate_vo(scenario: &Scenario, runs: u64) -> Result<VoCalibration, Cal
         return Err(CalibrationError::TooFewRuns(runs));
     }
     let historic: Vec<_> = scenario
-        .campaign
+        .settings
         .calendar
         .sols
         .iter()
@@ -119,7 +121,7 @@ pub fn calibrate_vo(scenario: &Scenario, runs: u64) -> Result<VoCalibration, Cal
     // A step without VO charges the commanded length (wheel odometry, blind to slip), a step
     // with VO about (1 − slip) of it, so per metre of odometry a class charges
     // p · relative / (1 − mean slip) metres without VO (to first order in the slip spread).
-    let slip = scenario.campaign.rover.errors.slip_fraction;
+    let slip = scenario.settings.rover.errors.slip_fraction;
     let weight = share.sand * VO_FAILURE_RELATIVE.sand / (1.0 - slip.sand)
         + share.soil * VO_FAILURE_RELATIVE.soil / (1.0 - slip.soil)
         + share.bedrock * VO_FAILURE_RELATIVE.bedrock / (1.0 - slip.bedrock);
@@ -177,13 +179,13 @@ pub struct DriveRateCalibration {
 /// rate `rate_m_per_h`.
 fn ground_m_per_drive_sol(scenario: &Scenario, rate_m_per_h: f64, runs: u64) -> f64 {
     let mut s = scenario.clone();
-    s.campaign.rover.drive_rate_m_per_h = rate_m_per_h;
+    s.settings.rover.drive_rate_m_per_h = rate_m_per_h;
     // The rate is AutoNav's: measured with no drive shortened before a passage (the record
     // has none; the passages of a map are placed where the record met them early in a sol).
-    s.campaign.rules.preemptive_shortening = false;
+    s.settings.rules.preemptive_shortening = false;
     // The sols the record drove to their end (a drive that faulted says nothing of the rate),
     // where ground drove to its end too.
-    let cal = &scenario.campaign.calendar;
+    let cal = &scenario.settings.calendar;
     let per_run: Vec<(f64, u32)> = (0..runs)
         .into_par_iter()
         .map(|r| {
@@ -224,7 +226,7 @@ pub fn calibrate_drive_rate(
         e.historic
             .is_some_and(|h| h.distance_m > 0.0 && !h.ended_in_fault)
     };
-    let cal_sols = &scenario.campaign.calendar.sols;
+    let cal_sols = &scenario.settings.calendar.sols;
     if cal_sols
         .iter()
         .filter(unfaulted)
@@ -233,7 +235,7 @@ pub fn calibrate_drive_rate(
         return Err(CalibrationError::OwnSpeeds(scenario.name.clone()));
     }
     let driven: Vec<f64> = scenario
-        .campaign
+        .settings
         .calendar
         .sols
         .iter()
@@ -245,7 +247,7 @@ pub fn calibrate_drive_rate(
         return Err(CalibrationError::NoRecord(scenario.name.clone()));
     }
     let target = driven.iter().sum::<f64>() / driven.len() as f64;
-    let own = scenario.campaign.rover.drive_rate_m_per_h;
+    let own = scenario.settings.rover.drive_rate_m_per_h;
     let at_own = ground_m_per_drive_sol(scenario, own, runs);
     if at_own <= 0.0 {
         return Err(CalibrationError::NoDrive(scenario.name.clone()));
@@ -270,4 +272,75 @@ pub fn calibrate_drive_rate(
         calibrated_rate_m_per_h: rate,
         ground_m_per_drive_sol_at_calibrated_rate: ground_m_per_drive_sol(scenario, rate, runs),
     })
+}
+
+impl VoCalibration {
+    /// The printed report: the record, the terrain under the re-simulated drives, the solved
+    /// and the shipped value, and the distance without VO the shipped value gives.
+    #[must_use]
+    pub fn text(&self) -> String {
+        let c = self;
+        let pct = |x: f64| 100.0 * x;
+        let mut t = String::new();
+        let _ = writeln!(
+            t,
+            "{} — VO failure calibration over {} ground re-simulations",
+            c.scenario, c.runs
+        );
+        let _ = writeln!(
+            t,
+            "record: {:.3} m without VO in {:.1} m ({:.4} % of distance)",
+            c.record_novo_m,
+            c.record_distance_m,
+            pct(c.record_novo_m / c.record_distance_m)
+        );
+        let _ = writeln!(
+            t,
+            "terrain under the re-simulated drives: sand {:.1} %, soil {:.1} %, bedrock {:.1} %",
+            pct(c.terrain_share.sand),
+            pct(c.terrain_share.soil),
+            pct(c.terrain_share.bedrock)
+        );
+        let _ = writeln!(
+            t,
+            "relative failure rates (judgement): sand {}, soil {}, bedrock {}",
+            c.relative.sand, c.relative.soil, c.relative.bedrock
+        );
+        let _ = writeln!(
+            t,
+            "solved VO failure probability per step on soil: {:.3e} (shipped: {:.3e}, sim::rover::errors::VO_FAILURE_SOIL)",
+            c.vo_failure_soil, c.shipped_vo_failure_soil
+        );
+        let _ = writeln!(
+            t,
+            "with the shipped value, metres without VO over the record's distance: {:.3} m [95 % interval {:.3}, {:.3}] (record {:.3} m)",
+            c.simulated_novo_m,
+            c.simulated_novo_interval_m[0],
+            c.simulated_novo_interval_m[1],
+            c.record_novo_m
+        );
+        t
+    }
+}
+
+impl DriveRateCalibration {
+    /// The printed report: the record's metres per drive sol, what ground drives at the
+    /// scenario's rate, and the calibrated rate.
+    #[must_use]
+    pub fn text(&self) -> String {
+        let c = self;
+        format!(
+            "{} — drive rate calibration over {} ground re-simulations per step\n\
+             record: {:.1} m per drive sol\n\
+             at the scenario's rate, {:.1} m/h: ground drives {:.1} m per drive sol\n\
+             calibrated rate: {:.1} m/h (ground then drives {:.1} m per drive sol)\n",
+            c.scenario,
+            c.runs,
+            c.record_m_per_drive_sol,
+            c.scenario_rate_m_per_h,
+            c.ground_m_per_drive_sol_at_scenario_rate,
+            c.calibrated_rate_m_per_h,
+            c.ground_m_per_drive_sol_at_calibrated_rate
+        )
+    }
 }

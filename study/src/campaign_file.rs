@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 
 use planner::{PlanError, Problem};
 
-use crate::check::Check;
+use crate::check::FieldCheck;
 use crate::error::ScenarioError;
 use activity_entry::activity;
 pub(crate) use campaign_entry::{campaign, task};
@@ -135,7 +135,7 @@ impl CampaignFile {
     }
 
     fn resolve(path: &Path, raw: RawCampaignFile, sha256: String) -> Result<Self, ScenarioError> {
-        let c = Check { path };
+        let c = FieldCheck { path };
         let s = &raw.sol;
         let start_s = c.lmst_s("sol.start_lmst", &s.start_lmst)?;
         let end_s = c.lmst_s("sol.end_lmst", &s.end_lmst)?;

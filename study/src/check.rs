@@ -1,18 +1,22 @@
 //! The field checks every file format shares (scenario, `[science]`, campaign files): each
-//! returns a one-line [`ScenarioError`] naming the file and the TOML field, worded alike.
+//! returns a one-line [`ScenarioError`] naming the file and the TOML field, worded alike. A
+//! simulator settings struct checks its own fields ([`FieldError`]); [`Check::setting`] names
+//! the file's field for it.
 
 use std::path::Path;
 
 use planner::{MAX_TIERS, MAX_UTILITY};
+use sim::settings::physical_range::check_fraction;
 use sim::time::SolSeconds;
+use sim::{FieldError, PhysicalRange};
 
 use crate::error::ScenarioError;
 
-pub(crate) struct Check<'a> {
+pub(crate) struct FieldCheck<'a> {
     pub(crate) path: &'a Path,
 }
 
-impl Check<'_> {
+impl FieldCheck<'_> {
     pub(crate) fn err(
         &self,
         field: &str,
@@ -40,21 +44,35 @@ impl Check<'_> {
             Err(self.err(field, format!("a non-negative number of {unit}"), v))
         }
     }
-    /// A value in `lo ..= hi` `unit` (a physical range: the loaders refuse absurd values that
-    /// are finite but would run to nonsense).
+    /// A simulator settings struct's error, its field already the file's (a TOML path).
+    pub(crate) fn field_error(&self, e: FieldError) -> ScenarioError {
+        ScenarioError::field(self.path, e.field, e.expected, e.got)
+    }
+    /// A simulator settings struct's error with its fields named as the file names them:
+    /// `name` maps a path of the struct's fields onto the TOML path (`step_m` → `rover.step_m`).
+    pub(crate) fn setting(&self, e: FieldError, name: impl Fn(&str) -> String) -> ScenarioError {
+        self.field_error(e.renamed(name))
+    }
+    /// A value in `range` (a physical range: the loaders refuse absurd values that are finite
+    /// but would run to nonsense).
+    pub(crate) fn range(
+        &self,
+        range: PhysicalRange,
+        field: &str,
+        v: f64,
+    ) -> Result<f64, ScenarioError> {
+        range.check(field, v).map_err(|e| self.field_error(e))
+    }
+    /// A value in `lo ..= hi` `unit`: [`Check::range`] of a range given in place.
     pub(crate) fn in_range(
         &self,
         field: &str,
         v: f64,
         lo: f64,
         hi: f64,
-        unit: &str,
+        unit: &'static str,
     ) -> Result<f64, ScenarioError> {
-        if v.is_finite() && (lo..=hi).contains(&v) {
-            Ok(v)
-        } else {
-            Err(self.err(field, format!("{lo} ..= {hi} {unit}"), v))
-        }
+        self.range(PhysicalRange::new(lo, hi, unit), field, v)
     }
     /// A value in `(0, hi]` `unit`.
     pub(crate) fn positive_at_most(
@@ -75,11 +93,7 @@ impl Check<'_> {
         }
     }
     pub(crate) fn fraction(&self, field: &str, v: f64) -> Result<f64, ScenarioError> {
-        if (0.0..=1.0).contains(&v) {
-            Ok(v)
-        } else {
-            Err(self.err(field, "a fraction between 0 and 1", v))
-        }
+        check_fraction(field, v).map_err(|e| self.field_error(e))
     }
     pub(crate) fn lmst(&self, field: &str, v: &str) -> Result<SolSeconds, ScenarioError> {
         SolSeconds::parse_lmst(v).ok_or_else(|| {

@@ -52,14 +52,14 @@ pub enum ScenarioError {
         /// What went wrong with the raster.
         source: Box<maps::RasterError>,
     },
-    /// The campaign built from a valid file failed the simulator's own checks (a bug in the
+    /// The settings built from a valid file failed the simulator's own checks (a bug in the
     /// loader if it ever shows: every field is checked before).
     #[error("{}: {source}", path.display())]
-    Campaign {
+    Settings {
         /// The scenario file.
         path: PathBuf,
         /// What the simulator refused.
-        source: sim::CampaignError,
+        source: sim::SettingsError,
     },
     /// The zones file referenced by the scenario could not be loaded.
     #[error("{}: map.zones: {source}", path.display())]

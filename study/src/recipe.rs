@@ -1,5 +1,5 @@
 //! Map recipes (TOML): a `[terrain]` table with the fields of
-//! [`maps::procedural::TerrainParams`] (seed, size, placement in map metres, craters, ridges,
+//! [`maps::procedural::TerrainSettings`] (seed, size, placement in map metres, craters, ridges,
 //! dune fields, sand patches, sun), an optional `dem_datum_m`, and an optional
 //! `[georeference]` table, a [`MapAnchor`]: the map point `anchor_m` lies at planetocentric
 //! `lon_deg` east, `lat_deg` north on Mars. With it the GeoTIFFs carry the Jezero equirectangular
@@ -14,16 +14,16 @@ use std::path::Path;
 
 use serde::Deserialize;
 
-use crate::check::Check;
+use crate::check::FieldCheck;
 use crate::error::ScenarioError;
-use maps::procedural::TerrainParams;
+use maps::procedural::TerrainSettings;
 use maps::zone::MAX_COORDINATE_M;
 use maps::{MapAnchor, MapCrs, MarsEquirectangular, MemoryBudget};
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawRecipe {
-    terrain: TerrainParams,
+    terrain: TerrainSettings,
     #[serde(default)]
     dem_datum_m: f64,
     georeference: Option<MapAnchor>,
@@ -33,7 +33,7 @@ struct RawRecipe {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Recipe {
     /// What to generate.
-    pub terrain: TerrainParams,
+    pub terrain: TerrainSettings,
     /// The DEM files' datum: heights are stored as centimetres above it, metres.
     pub dem_datum_m: f64,
     /// Where the map lies on Mars: [`MapCrs::Mars`] from `[georeference]`, else
@@ -77,7 +77,7 @@ pub fn recipe_from_toml_str(
 }
 
 fn validate(path: &Path, recipe: RawRecipe, budget: MemoryBudget) -> Result<Recipe, ScenarioError> {
-    let c = Check { path };
+    let c = FieldCheck { path };
     let t = &recipe.terrain;
     for (field, v) in [
         ("terrain.width_px", t.width_px),

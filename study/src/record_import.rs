@@ -10,8 +10,8 @@
 //! - **historic input (paper 000)**: the odometry it quotes, the fault on sol 385, no relay pass
 //!   on sol 406; the radius it gives on 385 (23.5 m at the passage, 26.91 m at the fault), from
 //!   which the metres driven without Visual Odometry on 383-385 are derived.
-//! - **computed**: the calendar (`[calendar]`, [`sim::ops_calendar`]); which idle sols it
-//!   explains for today's ground practice ([`sim::policy::Policy::calendar_schedule`]). An idle
+//! - **computed**: the calendar (`[calendar]`, [`sim::operations::ops_calendar`]); which idle sols it
+//!   explains for today's ground practice ([`sim::operations::policy::Policy::calendar_schedule`]). An idle
 //!   sol it does not explain is a **historic science stop**, typed as `drive = false` and named.
 //! - **measured**: each historic drive sol's AutoNav rate, its distance over its window (every
 //!   strategy drives that sol at that pace); their mean, metres over hours of the range's drives
@@ -23,17 +23,25 @@
 //!   stopped whose clearance is the radius paper 000 gives at the fault. A procedural map
 //!   around the route.
 
-use std::fmt::Write as _;
 use std::ops::RangeInclusive;
 
 use maps::{MapAnchor, MarsEquirectangular};
 use sim::Strategy;
-use sim::calendar::{Calendar, SolEntry};
-use sim::policy::{OperationsRules, Policy};
+use sim::operations::calendar::{Calendar, SolEntry};
+use sim::operations::policy::{OperationsRules, Policy};
 use sim::time::SolSeconds;
 
 use crate::error::ScenarioError;
 use crate::record::{RecordRange, RecordSol, TraverseLayer};
+
+mod passages;
+mod polyline;
+mod scenario_file;
+
+pub use passages::{CORRIDOR_HALF_WIDTH_M, PASSAGE_REACH_M};
+pub use polyline::{along, project_onto};
+use polyline::{point_at, round1};
+use scenario_file::{ScenarioFile, recipe_toml};
 
 /// What paper 000 says of a sol, where it says anything.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -50,7 +58,7 @@ pub struct PaperSol {
     pub source: &'static str,
 }
 
-/// Paper 000's per-sol facts (`../shared/seeds/000_*.txt`; cited as "paper 000").
+/// Paper 000's per-sol facts (`docs/references.md`).
 pub const PAPER_000_SOLS: [PaperSol; 6] = [
     PaperSol {
         sol: 385,
@@ -207,132 +215,6 @@ pub struct Imported {
     pub options: ImportOptions,
 }
 
-/// Metres along the polyline `points` (cumulative `cum`) of its point nearest `p`.
-#[must_use]
-pub fn project_onto(points: &[[f64; 2]], cum: &[f64], p: [f64; 2]) -> f64 {
-    let mut best = (f64::MAX, 0.0);
-    for k in 1..points.len() {
-        let (a, b) = (points[k - 1], points[k]);
-        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-        let len2 = (dx * dx + dy * dy).max(1e-12);
-        let t = (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2).clamp(0.0, 1.0);
-        let q = [a[0] + t * dx, a[1] + t * dy];
-        let d = (p[0] - q[0]).hypot(p[1] - q[1]);
-        if d < best.0 {
-            best = (d, cum[k - 1] + t * len2.sqrt());
-        }
-    }
-    best.1
-}
-
-/// Half-width of the keep-in corridor along the route, metres: the passages' blocks reach
-/// [`PASSAGE_REACH_M`] to either side, past its edge, so no detour goes around them.
-pub const CORRIDOR_HALF_WIDTH_M: f64 = 150.0;
-/// How far a passage's blocks reach from the gap, metres.
-pub const PASSAGE_REACH_M: f64 = 180.0;
-
-/// Half a planning-grid cell, metres: the grid measures a gap to cell centres, so it is added
-/// to each passage's half gap for the clearance `solsim validate` reports to be the intended
-/// one within a cell (the imported scenarios' grid is 2 m).
-const GRID_HALF_CELL_M: f64 = 1.0;
-
-impl Imported {
-    /// The keep-in corridor: the route buffered by [`CORRIDOR_HALF_WIDTH_M`] (round joins), a
-    /// GeoJSON feature (a modelling choice, as the rover planners' keep-in zones of paper 000
-    /// Fig. 3).
-    fn corridor(&self) -> String {
-        use geo::Buffer as _;
-        let line = geo::LineString::from(
-            self.route_m
-                .iter()
-                .map(|p| (p[0], p[1]))
-                .collect::<Vec<_>>(),
-        );
-        let area = line.buffer(CORRIDOR_HALF_WIDTH_M);
-        let ring = |r: &geo::LineString<f64>| -> String {
-            let pts: Vec<String> =
-                r.0.iter()
-                    .map(|c| format!("[{}, {}]", round1(c.x), round1(c.y)))
-                    .collect();
-            format!("[{}]", pts.join(", "))
-        };
-        let polygons: Vec<String> = area
-            .0
-            .iter()
-            .map(|p| {
-                let mut rings = vec![ring(p.exterior())];
-                rings.extend(p.interiors().iter().map(ring));
-                format!("[{}]", rings.join(", "))
-            })
-            .collect();
-        format!(
-            r#"{{"type": "Feature", "properties": {{"kind": "keep_in", "name": "corridor {CORRIDOR_HALF_WIDTH_M} m either side of the recorded route"}}, "geometry": {{"type": "MultiPolygon", "coordinates": [{}]}}}}"#,
-            polygons.join(", ")
-        )
-    }
-
-    /// The zones: the passages of the import rule, placed with each sol's start at
-    /// `sol_start_along_m[i]` metres along the route (the first placement takes the recorded
-    /// path's; `solsim record import` places them again where the replay, run without them,
-    /// starts each sol, so the replay meets each passage where the rule says). Returns the
-    /// GeoJSON and the number of passages.
-    #[must_use]
-    pub fn place_passages(&self, sol_start_along_m: &[f64]) -> (String, usize) {
-        let opts = &self.options;
-        let cum = along(&self.route_m);
-        let mut zones: Vec<String> = Vec::new();
-        let mut last_passage = f64::NEG_INFINITY;
-        for (i, x) in self.sols.iter().enumerate() {
-            let Some(&start) = sol_start_along_m.get(i) else {
-                break;
-            };
-            if x.distance_m <= 0.0 {
-                continue;
-            }
-            if x.no_path {
-                // The fault: 20 m past the paper's distance into the sol, closing at paper
-                // 000's radius at the fault.
-                let at = start + x.distance_m + 20.0;
-                let (p, d) = point_at(&self.route_m, &cum, at);
-                let half = PAPER_000_385_FAULT_R_M + opts.footprint_radius_m + GRID_HALF_CELL_M;
-                zones.extend(passage_features(
-                    &format!(
-                        "sol {} passage (NO_PATH, paper 000 Fig. 4; {at:.0} m along the route)",
-                        x.sol
-                    ),
-                    p,
-                    d,
-                    half,
-                ));
-                last_passage = at;
-            } else if x.from_fix
-                && x.distance_m > 2.0 * opts.passage_into_sol_m
-                && start + opts.passage_into_sol_m - last_passage >= opts.passage_spacing_m
-            {
-                let at = start + opts.passage_into_sol_m;
-                let (p, d) = point_at(&self.route_m, &cum, at);
-                let half = opts.passage_clearance_m + opts.footprint_radius_m + GRID_HALF_CELL_M;
-                zones.extend(passage_features(
-                    &format!("sol {} passage ({at:.0} m along the route)", x.sol),
-                    p,
-                    d,
-                    half,
-                ));
-                last_passage = at;
-            }
-        }
-        let n = zones.len() / 2;
-        zones.push(self.corridor());
-        (
-            format!(
-                "{{\"type\": \"FeatureCollection\", \"features\": [\n{}\n]}}\n",
-                zones.join(",\n")
-            ),
-            n,
-        )
-    }
-}
-
 /// File name of the scenario, zones and map folder for `name`.
 #[must_use]
 pub fn file_names(name: &str) -> (String, String, &'static str) {
@@ -341,67 +223,6 @@ pub fn file_names(name: &str) -> (String, String, &'static str) {
         format!("{name}.zones.geojson"),
         "map",
     )
-}
-
-/// Metres along a polyline, at each of its points.
-#[must_use]
-pub fn along(points: &[[f64; 2]]) -> Vec<f64> {
-    let mut out = Vec::with_capacity(points.len());
-    let mut total = 0.0;
-    for (i, p) in points.iter().enumerate() {
-        if i > 0 {
-            total += (p[0] - points[i - 1][0]).hypot(p[1] - points[i - 1][1]);
-        }
-        out.push(total);
-    }
-    out
-}
-
-/// The point `s` metres along a polyline, and the unit direction there.
-fn point_at(points: &[[f64; 2]], cum: &[f64], s: f64) -> ([f64; 2], [f64; 2]) {
-    let k = cum
-        .partition_point(|&c| c < s)
-        .clamp(1, points.len().max(2) - 1);
-    let (a, b) = (points[k - 1], points[k.min(points.len() - 1)]);
-    let len = (cum[k.min(cum.len() - 1)] - cum[k - 1]).max(1e-9);
-    let t = ((s - cum[k - 1]) / len).clamp(0.0, 1.0);
-    let d = [(b[0] - a[0]) / len, (b[1] - a[1]) / len];
-    ([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])], d)
-}
-
-fn round1(v: f64) -> f64 {
-    (v * 10.0).round() / 10.0
-}
-
-/// Two keep-out blocks across the path at `p` (unit direction `d`), leaving a gap of
-/// `2 × half_gap_m` centred on the path: GeoJSON features.
-fn passage_features(name: &str, p: [f64; 2], d: [f64; 2], half_gap_m: f64) -> [String; 2] {
-    let n = [-d[1], d[0]];
-    let (thick, reach) = (20.0, PASSAGE_REACH_M);
-    let block = |side: f64, label: &str| {
-        let corner = |u: f64, v: f64| {
-            [
-                round1(p[0] + d[0] * u + n[0] * v * side),
-                round1(p[1] + d[1] * u + n[1] * v * side),
-            ]
-        };
-        let ring = [
-            corner(-thick / 2.0, half_gap_m),
-            corner(thick / 2.0, half_gap_m),
-            corner(thick / 2.0, half_gap_m + reach),
-            corner(-thick / 2.0, half_gap_m + reach),
-            corner(-thick / 2.0, half_gap_m),
-        ];
-        let coords: Vec<String> = ring
-            .iter()
-            .map(|c| format!("[{}, {}]", c[0], c[1]))
-            .collect();
-        format!(
-            r#"{{"type": "Feature", "properties": {{"kind": "keep_out", "name": "{name} {label}"}}, "geometry": {{"type": "Polygon", "coordinates": [[{}]]}}}}"#,
-            coords.join(", ")
-        )
-    };
-    [block(1.0, "left"), block(-1.0, "right")]
 }
 
 /// Build the scenario for `opts.sols` from `layer`.
@@ -430,7 +251,7 @@ pub fn import(layer: &TraverseLayer, opts: &ImportOptions) -> Result<Imported, S
     })?;
     let range_len_points = path_lonlat.len();
     // The route beyond: the record's next drives.
-    let (kept, _) = layer.classify(&sim::mars_time::MARS_2020);
+    let (kept, _) = layer.classify(&sim::time::mars_time::MARS_2020);
     let mut beyond: Vec<[f64; 2]> = kept
         .iter()
         .filter(|(e, _)| e.sol > last)
@@ -579,7 +400,10 @@ pub fn import(layer: &TraverseLayer, opts: &ImportOptions) -> Result<Imported, S
     }
 
     // The calendar: which idle sols it explains for today's practice.
-    let rules = sim::ops_calendar::TeamRules::for_mission(sim::mars_time::MARS_2020, 2020..=2040);
+    let rules = sim::operations::ops_calendar::TeamRules::for_mission(
+        sim::time::mars_time::MARS_2020,
+        2020..=2040,
+    );
     let computed = rules.compute(first..=last);
     let mut science_stop = vec![false; sols.len()];
     let no_pass: Vec<bool> = sols.iter().map(|x| x.no_relay_pass).collect();
@@ -698,197 +522,17 @@ pub fn import(layer: &TraverseLayer, opts: &ImportOptions) -> Result<Imported, S
     let default_start = median(starts).unwrap_or(SolSeconds(42_000)).lmst();
     let default_end = median(ends).unwrap_or(SolSeconds(52_000)).lmst();
 
-    // The recipe.
-    let width_px = (width_m / resolution).ceil() as usize;
-    let height_px = (height_m / resolution).ceil() as usize;
-    let mut recipe = String::new();
-    let _ = writeln!(
-        recipe,
-        "# Procedural stand-in for the ground around sols {first}-{last} of the record (a modelling"
-    );
-    let _ = writeln!(
-        recipe,
-        "# choice: the record has no map). Written by `solsim record import`."
-    );
-    let _ = writeln!(
-        recipe,
-        "dem_datum_m = 0.0\n\n[terrain]\nseed = {}",
-        opts.seed
-    );
-    let _ = writeln!(recipe, "width_px = {width_px}\nheight_px = {height_px}");
-    let _ = writeln!(
-        recipe,
-        "geo = {{ origin_m = [0.0, {}], resolution_m_per_px = {resolution} }}",
-        round1(height_px as f64 * resolution)
-    );
-    let _ = writeln!(
-        recipe,
-        "base_height_m = 120.0\nrelief_m = 12.0\ncrater_density_per_km2 = 1.5\ncrater_radius_min_m = 8.0\ncrater_radius_max_m = 30.0\nridge_count = 2\nridge_height_m = 2.0\nsand_fraction = 0.12\nbedrock_fraction = 0.30\nsun_azimuth_deg = 250.0\nsun_elevation_deg = 35.0"
-    );
-    let _ = writeln!(
-        recipe,
-        "\n# The recorded path's first point, {:.8}° E {:.8}° N, at its map position.",
-        first_lonlat[0], first_lonlat[1]
-    );
-    let _ = writeln!(
-        recipe,
-        "[georeference]\nanchor_m = [{}, {}]\nlon_deg = {}\nlat_deg = {}",
-        anchor.anchor_m[0], anchor.anchor_m[1], anchor.lon_deg, anchor.lat_deg
-    );
-
-    // The scenario.
-    let drove: Vec<u32> = sols
-        .iter()
-        .filter(|x| x.distance_m > 0.0)
-        .map(|x| x.sol)
-        .collect();
-    let total_drive: f64 = sols.iter().map(|x| x.distance_m).sum();
-    let mut t = String::new();
-    // The header: where each number comes from.
-    let header = [
-        format!(
-            "# Sols {first}-{last} replayed from the public record of Perseverance's drives: NASA's"
-        ),
-        format!(
-            "# Mars 2020 MMGIS layer {} (data/m20/M20_traverse.json). Written by",
-            layer.name
-        ),
-        format!(
-            "# `solsim record import --sols {first}-{last}`. {} drive sols, {total_drive:.1} m.",
-            drove.len()
-        ),
-        "#\n# Where each number comes from:".to_owned(),
-        "# - historic input (the record): which sols drove; each sol's distance (historic_source says".to_owned(),
-        "#   whether it is the record's length or paper 000's odometry); each drive's window in LMST".to_owned(),
-        "#   from the spacecraft clock (Mars24); the route, the recorded path in map metres (Jezero".to_owned(),
-        format!(
-            "#   equirectangular CRS), on for {:.0} m past the range along the record's later drives.",
-            opts.route_beyond_m
-        ),
-        "# - historic input (paper 000): the odometry it quotes, a NO_PATH fault, a sol without a relay".to_owned(),
-        "#   pass; metres without VO derived from the radii it gives (historic_novo_m).".to_owned(),
-        "# - historic science stops: idle sols of the record the computed calendar does not explain".to_owned(),
-        "#   (drive = false).".to_owned(),
-        "# - computed: the calendar ([calendar]: Mars time and the team's rules, sim::ops_calendar).".to_owned(),
-        "# - measured: each drive's speed, its distance over its window (the AutoNav rate of that sol for"
-            .to_owned(),
-        format!("#   every strategy); their mean, {drive_rate} m/h = {metres:.1} m over {hours:.2} h of the {n} drives with a whole"),
-        "#   window, for the other sols ([rover]).".to_owned(),
-        "# - modelling choice: the procedural map and the passages (keep-out pairs) of the zones file, by".to_owned(),
-        format!(
-            "#   the import rule: where the replay, run without them, is {} m into every drive sol planned from a known position, at least {} m apart,",
-            opts.passage_into_sol_m, opts.passage_spacing_m
-        ),
-        format!(
-            "#   clearance {} m; at a historic NO_PATH, 20 m past the paper's distance into the sol, closing at paper 000's radius.",
-            opts.passage_clearance_m
-        ),
-        "# - emergent: every skip, fault, radius and sol count of the what-if strategies.".to_owned(),
-        "#\n# What the record held besides plain drives:".to_owned(),
-    ];
-    for line in header {
-        let _ = writeln!(t, "{line}");
+    let recipe = recipe_toml(opts, [width_m, height_m], resolution, &anchor, first_lonlat);
+    let t = ScenarioFile {
+        layer_name: &layer.name,
+        opts,
+        sols: &sols,
+        findings: &findings,
+        drive_rate: (drive_rate, metres, hours, n),
+        drive_window: (default_start, default_end),
+        waypoints: &waypoints,
     }
-    for f in &findings {
-        let _ = writeln!(t, "# - {f}");
-    }
-    let _ = writeln!(t, "name = {:?}", opts.name);
-    let _ = writeln!(
-        t,
-        "description = {:?}",
-        format!(
-            "Sols {first}-{last} from the public drive record: {} drive sols, {total_drive:.0} m",
-            drove.len()
-        )
-    );
-    let _ = writeln!(t, "seed = {}\n", opts.seed);
-    let (_, zones_file, map_dir) = file_names(&opts.name);
-    let _ = writeln!(
-        t,
-        "[map]\nappearance = \"{map_dir}/appearance.tif\"\ndem = \"{map_dir}/dem.tif\"\nterrain = \"{map_dir}/terrain.tif\"\nzones = {zones_file:?}\n"
-    );
-    let _ = writeln!(t, "[grid]\nresolution_m = 2.0\nmax_slope_deg = 25.0\n");
-    let _ = writeln!(
-        t,
-        "[rover]\nfootprint_radius_m = {}\n# The record's mean speed (see the header): the AutoNav rate of sols without a window of\n# their own. Each historic drive sol drives at its own speed, its distance over its window.\ndrive_rate_m_per_h = {drive_rate}\nstep_m = 2.0\n",
-        opts.footprint_radius_m
-    );
-    let _ = writeln!(
-        t,
-        "[operations]\n# The median window of the range's drives, for sols without one of their own."
-    );
-    let _ = writeln!(
-        t,
-        "drive_start_lmst = {default_start:?}\ndrive_end_lmst = {default_end:?}\npost_drive_imaging_s = 1800\n"
-    );
-    let _ = writeln!(
-        t,
-        "[calendar]\n# Uplinks, weekend plans and restricted sols from Mars time and the team's rules.\nmission = \"mars2020\"\n"
-    );
-    let wp: Vec<String> = waypoints
-        .iter()
-        .map(|p| format!("[{}, {}]", p[0], p[1]))
-        .collect();
-    let _ = writeln!(t, "[route]\nwaypoints = [{}]\n", wp.join(", "));
-    for x in &sols {
-        let _ = writeln!(t, "[[sols]]\nsol = {}", x.sol);
-        if x.science_stop {
-            let _ = writeln!(t, "drive = false");
-        }
-        if x.no_relay_pass {
-            let _ = writeln!(t, "downlink = false");
-        }
-        let _ = writeln!(t, "historic_distance_m = {}", x.distance_m);
-        if x.distance_m > 0.0 {
-            if let Some(novo) = x.novo_m {
-                let _ = writeln!(t, "historic_novo_m = {novo}");
-            }
-            if x.no_path {
-                let _ = writeln!(t, "historic_fault = \"NO_PATH\"");
-            }
-            if let Some((start, end)) = &x.window {
-                if let Some(start) = start {
-                    let _ = writeln!(t, "historic_drive_start_lmst = {start:?}");
-                }
-                let _ = writeln!(t, "historic_drive_end_lmst = {end:?}");
-            }
-            let _ = writeln!(t, "historic_source = {:?}", x.source);
-        }
-        if !x.note.is_empty() {
-            let _ = writeln!(t, "note = {:?}", x.note);
-        }
-        t.push('\n');
-    }
-    for x in &sols {
-        if x.distance_m > 0.0 && !x.no_path {
-            let _ = writeln!(
-                t,
-                "[[expect]]\nwhat = \"sol {}: {} m ({})\"\nstrategy = \"replay\"\nsol = {}\ndistance_m = [{}, {}]\n",
-                x.sol,
-                x.distance_m,
-                if x.source.starts_with("paper") {
-                    "paper 000"
-                } else {
-                    "the record"
-                },
-                x.sol,
-                round1(x.distance_m - 0.1),
-                round1(x.distance_m + 0.1)
-            );
-        } else if x.no_path {
-            let _ = writeln!(
-                t,
-                "[[expect]]\nwhat = \"sol {}: NO_PATH ({})\"\nstrategy = \"replay\"\nsol = {}\nfault = \"NO_PATH\"\n",
-                x.sol, x.source, x.sol
-            );
-        } else if x.distance_m == 0.0 {
-            let _ = writeln!(
-                t,
-                "[[expect]]\nwhat = \"sol {}: no drive, as the record\"\nstrategy = \"replay\"\nsol = {}\ndrove = false\n",
-                x.sol, x.sol
-            );
-        }
-    }
+    .toml();
     let mut imported = Imported {
         scenario_toml: t,
         zones_geojson: String::new(),

@@ -111,7 +111,7 @@ const COORDINATES_HINT: &str = "scenario and zone coordinates are map metres, x 
 #[must_use]
 pub fn findings(s: &Scenario) -> Vec<Finding> {
     let mut out = Vec::new();
-    let c = &s.campaign;
+    let c = &s.settings;
     let cell_m = c.grid.geo.resolution_m_per_px;
     let (x0, y0, x1, y1) = s.layers.dem.extent_m();
     let extent = format!("x {x0:.1}..{x1:.1} m, y {y0:.1}..{y1:.1} m");

@@ -38,6 +38,29 @@ pub enum SweepError {
         /// What was given.
         got: String,
     },
+    /// Two scenario files read again (to compare their settings) no longer parse.
+    #[error("{} or {}: {message}", base.display(), variant.display())]
+    Reread {
+        /// The first file.
+        base: PathBuf,
+        /// The second file.
+        variant: PathBuf,
+        /// The parser's message.
+        message: String,
+    },
+    /// The two versions of a what-if study have different seeds, so their runs would not pair.
+    #[error(
+        "{}: seed {seed}: expected the base's seed ({base_seed}), so that run i of both sees the same world",
+        variant.display()
+    )]
+    SeedMismatch {
+        /// The variant's file.
+        variant: PathBuf,
+        /// Its seed.
+        seed: u64,
+        /// The base's seed.
+        base_seed: u64,
+    },
     /// The scenario could not be loaded.
     #[error(transparent)]
     Scenario(#[from] study::ScenarioError),
@@ -69,6 +92,25 @@ impl SweepError {
             field: field.into(),
             expected: expected.into(),
             got: got.to_string(),
+        }
+    }
+
+    /// A [`SweepError::Io`] error: `what` failed on `path` (`cannot create`, `cannot list`).
+    pub fn io(path: &std::path::Path, what: &str, e: std::io::Error) -> Self {
+        SweepError::Io {
+            path: path.to_path_buf(),
+            what: what.into(),
+            message: e.to_string(),
+        }
+    }
+
+    /// A [`SweepError::Io`] error: `path` cannot be read as an input (missing, not a regular
+    /// file, too large).
+    pub fn unreadable(path: &std::path::Path, e: maps::input_file::InputFileError) -> Self {
+        SweepError::Io {
+            path: path.to_path_buf(),
+            what: "cannot read".into(),
+            message: e.to_string(),
         }
     }
 }

@@ -13,8 +13,12 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use study::Scenario;
+use study::scenario::StudySegment;
+
 use crate::error::SweepError;
 use crate::parquet_io;
+use crate::spec::SweepSpec;
 
 /// The value of [`Manifest::format`].
 pub const FORMAT: &str = "solsim-sweep/2";
@@ -41,15 +45,6 @@ pub struct ShardInfo {
     pub first_run: u64,
     /// One past the last run index of the slice.
     pub end_run: u64,
-}
-
-/// The study segment a sweep reports (`[study_segment]` of the scenario).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct SegmentInfo {
-    /// First sol counted.
-    pub from_sol: u32,
-    /// Metres to cover.
-    pub distance_m: f64,
 }
 
 /// One committed chunk of runs.
@@ -85,7 +80,7 @@ pub struct Manifest {
     pub solsim_version: String,
     /// The scenario.
     pub scenario: ScenarioId,
-    /// The sweep's seed (run `i` runs under `sim::seeds::run_seed(seed, i)`).
+    /// The sweep's seed (run `i` runs under `sim::seeds::RunSeeds::new(seed, i)`).
     pub seed: u64,
     /// Run indices `0..runs` of the whole sweep.
     pub runs: u64,
@@ -94,7 +89,7 @@ pub struct Manifest {
     /// The strategy paired differences are taken against.
     pub baseline: Option<String>,
     /// The study segment, if the scenario has one.
-    pub segment: Option<SegmentInfo>,
+    pub segment: Option<StudySegment>,
     /// The slice this directory holds (`None`: all runs).
     pub shard: Option<ShardInfo>,
     /// Running or complete.
@@ -144,6 +139,37 @@ pub fn sha256_file(path: &Path) -> Result<String, SweepError> {
 const MAX_MANIFEST_BYTES: u64 = 64 << 20;
 
 impl Manifest {
+    /// The manifest of a new sweep of `scenario` under `spec`: running, with no chunk yet.
+    #[must_use]
+    pub fn fresh(scenario: &Scenario, spec: &SweepSpec) -> Self {
+        Manifest {
+            format: FORMAT.into(),
+            solsim_version: env!("CARGO_PKG_VERSION").into(),
+            scenario: ScenarioId {
+                name: scenario.name.clone(),
+                sha256: scenario.sha256.clone(),
+            },
+            seed: spec.seed,
+            runs: spec.runs,
+            strategies: spec.strategies.iter().map(|s| s.name().into()).collect(),
+            baseline: spec.baseline.map(|b| b.name().into()),
+            segment: scenario.study_segment,
+            shard: spec.shard.map(|s| {
+                let r = s.range(spec.runs);
+                ShardInfo {
+                    index: s.index,
+                    count: s.count,
+                    first_run: r.start,
+                    end_run: r.end,
+                }
+            }),
+            state: State::Running,
+            chunk_runs: Some(spec.chunk_runs),
+            chunks: Vec::new(),
+            files: Default::default(),
+        }
+    }
+
     /// Reads `dir/manifest.json` (`None` if absent).
     ///
     /// # Errors
@@ -227,10 +253,10 @@ impl Manifest {
         let bad = |field: String, expected: String, got: String| {
             Err(SweepError::format(path, field, expected, got))
         };
-        if self.runs == 0 || self.runs > crate::engine::MAX_RUNS {
+        if self.runs == 0 || self.runs > crate::spec::MAX_RUNS {
             return bad(
                 "runs".into(),
-                format!("a number of runs from 1 to {}", crate::engine::MAX_RUNS),
+                format!("a number of runs from 1 to {}", crate::spec::MAX_RUNS),
                 self.runs.to_string(),
             );
         }
@@ -257,7 +283,7 @@ impl Manifest {
         }
         if let Some(s) = self.shard {
             let want = (s.count > 0 && s.index < s.count && s.count <= self.runs).then(|| {
-                crate::engine::Shard {
+                crate::spec::Shard {
                     index: s.index,
                     count: s.count,
                 }

@@ -24,7 +24,7 @@ use crate::error::SweepError;
 /// Largest file inside a sweep directory that solsim reads, bytes: 1 TiB. Measured: 43 bytes
 /// per run row and 87 per sol row (`solsim sweep scenarios/sol717-719.toml --runs 1000` before its rebuild from the record, five
 /// strategies: runs.parquet 216 487 B, sols.parquet 1 307 741 B). A sweep of
-/// [`crate::engine::MAX_RUNS`] runs of a 31-sol campaign under five strategies would write some
+/// [`crate::spec::MAX_RUNS`] runs of a 31-sol campaign under five strategies would write some
 /// 2 GB of run rows and 135 GB of sol rows. Tables are read a batch at a time and the run table's
 /// row count is checked before it is decoded, so the cap bounds the time spent on a sparse or
 /// runaway file, not memory.

@@ -16,16 +16,7 @@ use arrow_array::types::{Float64Type, UInt32Type, UInt64Type};
 use arrow_array::{Array, ArrayRef, RecordBatch};
 use arrow_schema::{ArrowError, DataType, Field, Schema, SchemaRef};
 use sim::{CampaignOutcome, FaultKind, Strategy};
-
-/// The stretch of the traverse a study compares strategies on: sols needed to drive
-/// `distance_m` metres counted from `from_sol` (the scenario's `[study_segment]`).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Segment {
-    /// First sol counted.
-    pub from_sol: u32,
-    /// Metres to cover.
-    pub distance_m: f64,
-}
+use study::scenario::StudySegment;
 
 /// One run of one strategy: a row of `runs.parquet`.
 #[derive(Debug, Clone, PartialEq)]
@@ -34,7 +25,7 @@ pub struct RunRow {
     pub run_index: u64,
     /// The strategy.
     pub strategy: Strategy,
-    /// The run's master seed ([`sim::seeds::run_seed`]); the strategy's stream is
+    /// The run's master seed ([`sim::seeds::RunSeeds::master`]); the strategy's stream is
     /// [`Strategy::stream_id`] under it.
     pub run_seed: u64,
     /// Sols until the end of the route (`None`: not reached within the calendar).
@@ -147,7 +138,7 @@ pub fn rows_of(
     run_index: u64,
     run_seed: u64,
     outcome: &CampaignOutcome,
-    segment: Option<Segment>,
+    segment: Option<StudySegment>,
 ) -> (RunRow, Vec<SolRow>) {
     let t = &outcome.totals;
     let count = |kind: FaultKind| {

@@ -1,15 +1,21 @@
 //! What a study reports (`summary.json` and the printed table): per strategy the mean,
 //! median, p5 and p95 of each figure and the rates with 95 % Wilson intervals; against the
 //! baseline strategy the paired per-run difference of each figure with a seeded 95 % percentile
-//! bootstrap interval.
+//! bootstrap interval. [`Summary`] is `summary.json` itself: the statistics with the sweep they
+//! come from.
+
+use std::path::Path;
 
 use rayon::prelude::*;
 use serde::Serialize;
 use sim::Strategy;
+use study::scenario::StudySegment;
 
+use crate::error::SweepError;
+use crate::manifest::{Manifest, ScenarioId, ShardInfo};
 use crate::rows::RunRow;
 use crate::stats::{self, Interval, PairedDifference, Spread};
-pub use study::figure::{Figure, RateKind};
+pub use study::metric::{Metric, RateKind};
 
 /// Confidence of every interval.
 pub const CONFIDENCE: f64 = 0.95;
@@ -20,21 +26,21 @@ const BOOTSTRAP_SALT: u64 = 0x424f_4f54_0000_0000;
 
 /// The value of `figure` in a run (`None`: the goal or the segment was not reached).
 #[must_use]
-pub fn figure_of(figure: Figure, r: &RunRow) -> Option<f64> {
+pub fn metric_of(figure: Metric, r: &RunRow) -> Option<f64> {
     match figure {
-        Figure::SolsToGoal => r.sols_to_goal.map(f64::from),
-        Figure::SegmentSols => r.segment_sols.map(f64::from),
-        Figure::SegmentDistanceM => r.segment_distance_m,
-        Figure::DriveSols => Some(f64::from(r.drive_sols)),
-        Figure::DistanceM => Some(r.distance_m),
-        Figure::NoPathFaults => Some(f64::from(r.no_path_faults)),
-        Figure::Faults => Some(f64::from(r.faults)),
-        Figure::MaxUncertaintyM => Some(r.max_uncertainty_m),
-        Figure::OnboardApplied => Some(f64::from(r.onboard_localizations_applied)),
-        Figure::OnboardRejected => Some(f64::from(r.onboard_localizations_rejected)),
-        Figure::MaxTruthErrorM => Some(r.max_truth_error_m),
-        Figure::DriveTimeS => Some(r.drive_time_s),
-        Figure::DrivePlanUplinks => Some(f64::from(r.drive_plan_uplinks)),
+        Metric::SolsToGoal => r.sols_to_goal.map(f64::from),
+        Metric::SegmentSols => r.segment_sols.map(f64::from),
+        Metric::SegmentDistanceM => r.segment_distance_m,
+        Metric::DriveSols => Some(f64::from(r.drive_sols)),
+        Metric::DistanceM => Some(r.distance_m),
+        Metric::NoPathFaults => Some(f64::from(r.no_path_faults)),
+        Metric::Faults => Some(f64::from(r.faults)),
+        Metric::MaxUncertaintyM => Some(r.max_uncertainty_m),
+        Metric::OnboardApplied => Some(f64::from(r.onboard_localizations_applied)),
+        Metric::OnboardRejected => Some(f64::from(r.onboard_localizations_rejected)),
+        Metric::MaxTruthErrorM => Some(r.max_truth_error_m),
+        Metric::DriveTimeS => Some(r.drive_time_s),
+        Metric::DrivePlanUplinks => Some(f64::from(r.drive_plan_uplinks)),
     }
 }
 
@@ -142,17 +148,17 @@ pub struct Statistics {
 /// The seed of the bootstrap of `strategy` against the baseline on `figure`: a fixed function
 /// of the sweep's seed, so the intervals are as reproducible as the runs.
 #[must_use]
-pub fn bootstrap_seed(sweep_seed: u64, strategy: Strategy, figure: Figure) -> u64 {
-    let k = Figure::ALL.iter().position(|f| *f == figure).unwrap_or(0) as u64;
+pub fn bootstrap_seed(sweep_seed: u64, strategy: Strategy, figure: Metric) -> u64 {
+    let k = Metric::ALL.iter().position(|f| *f == figure).unwrap_or(0) as u64;
     maps::procedural::noise::sub_seed(sweep_seed, BOOTSTRAP_SALT + 16 * k + strategy.stream_id())
 }
 
 /// The figures of a sweep with or without a study segment.
 #[must_use]
-pub fn figures(has_segment: bool) -> Vec<Figure> {
-    Figure::ALL
+pub fn metrics(has_segment: bool) -> Vec<Metric> {
+    Metric::ALL
         .into_iter()
-        .filter(|f| has_segment || !matches!(f, Figure::SegmentSols | Figure::SegmentDistanceM))
+        .filter(|f| has_segment || !matches!(f, Metric::SegmentSols | Metric::SegmentDistanceM))
         .collect()
 }
 
@@ -166,7 +172,7 @@ pub fn statistics(
     has_segment: bool,
     sweep_seed: u64,
 ) -> Statistics {
-    let figures = figures(has_segment);
+    let figures = metrics(has_segment);
     let of = |s: Strategy| -> Vec<&RunRow> { rows.iter().filter(|r| r.strategy == s).collect() };
     let per: Vec<StrategySummary> = strategies
         .iter()
@@ -194,7 +200,7 @@ pub fn statistics(
                     .iter()
                     .map(|f| {
                         let values: Vec<f64> =
-                            runs.iter().filter_map(|r| figure_of(*f, r)).collect();
+                            runs.iter().filter_map(|r| metric_of(*f, r)).collect();
                         FigureSummary {
                             name: f.name().into(),
                             spread: stats::spread(&values),
@@ -209,7 +215,7 @@ pub fn statistics(
         Some(b) => {
             let base: std::collections::BTreeMap<u64, &RunRow> =
                 of(b).into_iter().map(|r| (r.run_index, r)).collect();
-            let jobs: Vec<(Strategy, Figure)> = strategies
+            let jobs: Vec<(Strategy, Metric)> = strategies
                 .iter()
                 .filter(|&&s| s != b)
                 .flat_map(|&s| figures.iter().map(move |&f| (s, f)))
@@ -219,8 +225,8 @@ pub fn statistics(
                     let diffs: Vec<f64> = of(s)
                         .iter()
                         .filter_map(|r| {
-                            let mine = figure_of(f, r)?;
-                            let theirs = figure_of(f, base.get(&r.run_index)?)?;
+                            let mine = metric_of(f, r)?;
+                            let theirs = metric_of(f, base.get(&r.run_index)?)?;
                             Some(mine - theirs)
                         })
                         .collect();
@@ -279,4 +285,59 @@ impl StrategySummary {
             .find(|f| f.name == name)
             .and_then(|f| f.spread.as_ref())
     }
+}
+
+/// `summary.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct Summary {
+    /// [`crate::manifest::FORMAT`].
+    pub format: String,
+    /// The scenario.
+    pub scenario: ScenarioId,
+    /// The sweep's seed.
+    pub seed: u64,
+    /// Run indices `0..runs` of the whole sweep.
+    pub runs: u64,
+    /// The slice summarised (`None`: all runs).
+    pub shard: Option<ShardInfo>,
+    /// The study segment.
+    pub segment: Option<StudySegment>,
+    /// The statistics.
+    pub statistics: Statistics,
+}
+
+/// The [`Summary`] of the run rows `rows` of the sweep `manifest` describes.
+pub(crate) fn summarise(rows: &[RunRow], manifest: &Manifest) -> Summary {
+    let strategies: Vec<Strategy> = manifest
+        .strategies
+        .iter()
+        .filter_map(|s| Strategy::from_name(s))
+        .collect();
+    let baseline = manifest.baseline.as_deref().and_then(Strategy::from_name);
+    Summary {
+        format: manifest.format.clone(),
+        scenario: manifest.scenario.clone(),
+        seed: manifest.seed,
+        runs: manifest.runs,
+        shard: manifest.shard,
+        segment: manifest.segment,
+        statistics: statistics(
+            rows,
+            &strategies,
+            baseline,
+            manifest.segment.is_some(),
+            manifest.seed,
+        ),
+    }
+}
+
+/// `summary.json`'s text for `summary` (pretty JSON and a newline).
+pub(crate) fn summary_text(summary: &Summary, dir: &Path) -> Result<String, SweepError> {
+    let mut text = serde_json::to_string_pretty(summary).map_err(|e| SweepError::Io {
+        path: dir.join("summary.json"),
+        what: "cannot serialise".into(),
+        message: e.to_string(),
+    })?;
+    text.push('\n');
+    Ok(text)
 }

@@ -39,7 +39,7 @@ pub fn scenario_kind(e: &ScenarioError) -> String {
         ScenarioError::Zones { source, .. } => format!("map.zones: {}", variant(source)),
         // The loader checks every field first: the simulator refusing what it built is a bug,
         // reported as a failure with its input.
-        ScenarioError::Campaign { .. } => panic!("the loader let through a campaign: {e}"),
+        ScenarioError::Settings { .. } => panic!("the loader let through a campaign: {e}"),
     }
 }
 

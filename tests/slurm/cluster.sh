@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# A real single-node Slurm cluster for tests, from Debian's packages (see /work/shared/SLURM.md
-# for how it was verified on these machines).
+# A real single-node Slurm cluster for tests, from Debian's packages (slurm-wlm and munge), run
+# as root on the test machine.
 #
 #   cluster.sh start STATE_DIR   install the packages if missing, start munged (unless one already
 #                                answers), write STATE_DIR/slurm.conf, start slurmctld and slurmd,

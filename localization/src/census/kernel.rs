@@ -14,7 +14,8 @@ use super::transform::CensusImage;
 /// Offsets scored per pass over a template row (register blocking: each template word is loaded
 /// once for all of them).
 ///
-/// PERFORMANCE.md §3 measured −11 % for 4 with the C AVX2 kernel, but this scalar POPCNT kernel
+/// Scoring 4 was measured 11 % faster for a C AVX2 kernel (docs/design.md, "Exact census scores
+/// by bit-plane FFT"), but this scalar POPCNT kernel
 /// runs out of registers instead: at flight size (240² over 480², 5 % invalid + 30 % wedge,
 /// 1 thread, Zen 1) blocks of 1 / 2 / 3 / 4 / 8 offsets took 215 / 223 / 250 / 245 / 264 ms.
 /// Re-measure before changing it; every value gives the same counts.

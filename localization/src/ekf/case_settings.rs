@@ -6,9 +6,63 @@ use super::imu::ImuErrors;
 use super::mars::NavigationFrame;
 use super::orbit::CircularOrbit;
 use super::state::{StateVector, ix};
-use super::table1::Table1Case;
 use super::trajectory::{TrajectorySettings, TrueState};
 use super::tuning::{BiasPriors, FilterModel, FilterTuning};
+
+/// The four simulation cases of paper 004 Table 1.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub enum Table1Case {
+    /// 10 m satellite image, 10 m radio range.
+    Case1,
+    /// 10 m image, 1 m range.
+    Case2,
+    /// 0.25 m image, 10 m range.
+    Case3,
+    /// 0.25 m image, 1 m range.
+    Case4,
+}
+
+impl Table1Case {
+    /// The four cases in order.
+    pub const ALL: [Table1Case; 4] = [Self::Case1, Self::Case2, Self::Case3, Self::Case4];
+
+    /// 1 to 4.
+    pub fn number(self) -> u8 {
+        match self {
+            Self::Case1 => 1,
+            Self::Case2 => 2,
+            Self::Case3 => 3,
+            Self::Case4 => 4,
+        }
+    }
+
+    /// Resolution of the satellite image, metres per pixel.
+    pub fn image_resolution_m(self) -> f64 {
+        match self {
+            Self::Case1 | Self::Case2 => 10.0,
+            Self::Case3 | Self::Case4 => 0.25,
+        }
+    }
+
+    /// Accuracy (1σ) of the radio range, metres.
+    pub fn range_sigma_m(self) -> f64 {
+        match self {
+            Self::Case1 | Self::Case3 => 10.0,
+            Self::Case2 | Self::Case4 => 1.0,
+        }
+    }
+
+    /// The paper's total localization error for this case, metres, and how the paper words it
+    /// (the text of §5 on Figs. 3, 5, 7 and 9).
+    pub fn paper_error_m(self) -> (f64, &'static str) {
+        match self {
+            Self::Case1 => (20.0, "about 20 m"),
+            Self::Case2 => (5.0, "within 5 m"),
+            Self::Case3 => (2.0, "within 2 m"),
+            Self::Case4 => (0.35, "within 35 cm"),
+        }
+    }
+}
 
 /// Everything a run depends on besides the seed (plain struct; [`CaseSettings::table1`] gives
 /// paper 004 §5's values).

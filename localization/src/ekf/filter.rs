@@ -52,14 +52,7 @@ pub struct Innovation<const M: usize> {
     pub covariance: SMatrix<f64, M, M>,
 }
 
-impl<const M: usize> Innovation<M> {
-    /// The squared Mahalanobis distance `yᵀ S⁻¹ y` (χ² with M degrees of freedom when the filter
-    /// is consistent), or `None` if `S` is not positive definite.
-    pub fn normalized_squared(&self) -> Option<f64> {
-        let s_inv_y = self.covariance.cholesky()?.solve(&self.residual);
-        Some(self.residual.dot(&s_inv_y))
-    }
-}
+impl<const M: usize> Innovation<M> {}
 
 /// `f(x, u)`: the state's time derivative for accelerometer `accel_xy` (body x, y, m/s²) and
 /// yaw rate `yaw_rate` (rad/s).

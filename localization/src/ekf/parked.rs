@@ -27,10 +27,11 @@
 
 use nalgebra::{Matrix2, SMatrix, Vector2};
 
+use super::case_settings::Table1Case;
 use super::case_settings::{CaseError, CaseSettings};
 use super::filter::Ekf;
 use super::state::{STATE_DIM, ix};
-use super::table1::{Simulation, Table1Case, simulate};
+use super::table1::{Simulation, simulate};
 use super::trajectory::TrajectorySettings;
 use super::tuning::FilterModel;
 use crate::particle::Ellipse;

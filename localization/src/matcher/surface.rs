@@ -7,7 +7,7 @@
 
 use maps::Raster;
 
-use super::{LocalizeError, MatchParams, Method, OrbitalMap, RoverImages, easting_scale};
+use super::{LocalizeError, MatchSettings, Method, OrbitalMap, RoverImages, easting_scale};
 use crate::baselines::{mi_scores, ncc_scores, template_entropy};
 use crate::census::{ScoreMap, census_transform_raster};
 
@@ -141,7 +141,7 @@ pub fn score_surface(
     rover: &RoverImages<'_>,
     center_m: [f64; 2],
     half_extent_m: [f64; 2],
-    p: &MatchParams,
+    p: &MatchSettings,
 ) -> Result<ScoreSurface, LocalizeError> {
     let map = orbital.appearance;
     let res = map.geo.resolution_m_per_px;
@@ -287,7 +287,7 @@ mod tests {
             ortho_valid: &valid,
             dem: None,
         };
-        let p = MatchParams::default();
+        let p = MatchSettings::default();
         let prior = [truth[0] + 3.0, truth[1] - 2.0];
         // A rectangular window: 2·⌈h/res⌉ + 1 offsets per axis.
         let s = score_surface(&orbital, &rover, prior, [6.0, 4.1], &p).unwrap();

@@ -7,7 +7,7 @@ use std::sync::{Arc, Mutex, PoisonError};
 use maps::{GeoTransform, MapLayers};
 
 use crate::synthetic::{
-    OrbitalParams, OrbitalProducts, SyntheticError, TerrainStatics, TruthPatch, patch_grid,
+    OrbitalProducts, OrbitalSettings, SyntheticError, TerrainStatics, TruthPatch, patch_grid,
     render_orbital_with, truth_patch_on,
 };
 
@@ -52,7 +52,7 @@ struct RenderKey {
     /// The grid's corner and pixel size, as bits.
     geo_bits: [u64; 3],
     n: usize,
-    orbital: OrbitalParams,
+    orbital: OrbitalSettings,
 }
 
 impl std::fmt::Debug for OnboardCache {
@@ -73,7 +73,7 @@ impl OnboardCache {
     /// settings of [`super::OnboardSettings::orbital`]; other settings are served too, without
     /// the terrain fields), keeping [`DEFAULT_RECENT_RENDERS`] renders.
     #[must_use]
-    pub fn new(layers: Arc<MapLayers>, orbital: &OrbitalParams) -> Self {
+    pub fn new(layers: Arc<MapLayers>, orbital: &OrbitalSettings) -> Self {
         Self {
             statics: TerrainStatics::new(layers, orbital.ripple_migration_m),
             recent: Mutex::new(VecDeque::new()),
@@ -117,7 +117,7 @@ impl OnboardCache {
         half_size_m: f64,
         truth_seed: u64,
         orbital_seed: u64,
-        orbital: &OrbitalParams,
+        orbital: &OrbitalSettings,
     ) -> Result<Arc<Rendered>, SyntheticError> {
         let (geo, n) = patch_grid(layers, center_m, half_size_m)?;
         let key = RenderKey {

@@ -6,7 +6,7 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
 
 use super::motion::{Odometry, Prior};
-use super::params::{ParticleParams, Resampling};
+use super::params::{ParticleSettings, Resampling};
 use super::posterior::{Ellipse, Mode, Posterior, mean_and_covariance, modes};
 use super::resample::{effective_sample_size, kld_indices, systematic_indices};
 use super::{ParticleError, check};
@@ -15,7 +15,7 @@ use super::{ParticleError, check};
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub enum SkipReason {
     /// Too few valid orthomosaic pixels to say anything (below the matcher's
-    /// [`MatchParams::min_valid_fraction`](crate::matcher::MatchParams::min_valid_fraction)).
+    /// [`MatchSettings::min_valid_fraction`](crate::matcher::MatchSettings::min_valid_fraction)).
     TooFewValid {
         /// Fraction of valid pixels, 0..1.
         fraction: f64,
@@ -63,7 +63,7 @@ pub struct UpdateReport {
     /// regularised resampling of [`ParticleFilter::update`]) rather than from the weighted
     /// particles.
     pub resampled_on_grid: bool,
-    /// Score surfaces computed (one per tile of [`ParticleParams::max_surface_half_extent_m`]).
+    /// Score surfaces computed (one per tile of [`ParticleSettings::max_surface_half_extent_m`]).
     pub surfaces: usize,
 }
 
@@ -88,17 +88,17 @@ pub struct ParticleFilter {
     pub(super) positions_m: Vec<[f64; 2]>,
     /// Normalised importance weights (sum 1).
     pub(super) weights: Vec<f64>,
-    pub(super) params: ParticleParams,
+    pub(super) params: ParticleSettings,
     pub(super) rng: ChaCha8Rng,
 }
 
 impl ParticleFilter {
-    /// [`ParticleParams::particle_count`] particles drawn from `prior`, equally weighted, with
+    /// [`ParticleSettings::particle_count`] particles drawn from `prior`, equally weighted, with
     /// the filter's random stream seeded by `seed`.
     ///
     /// # Errors
     /// [`ParticleError::InvalidParameter`] if `params` or `prior` is out of range.
-    pub fn new(prior: &Prior, params: ParticleParams, seed: u64) -> Result<Self, ParticleError> {
+    pub fn new(prior: &Prior, params: ParticleSettings, seed: u64) -> Result<Self, ParticleError> {
         params.validate()?;
         prior.validate()?;
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
@@ -122,7 +122,7 @@ impl ParticleFilter {
     pub fn from_particles(
         positions_m: Vec<[f64; 2]>,
         weights: Vec<f64>,
-        params: ParticleParams,
+        params: ParticleSettings,
         seed: u64,
     ) -> Result<Self, ParticleError> {
         params.validate()?;
@@ -186,7 +186,7 @@ impl ParticleFilter {
 
     /// The settings.
     #[must_use]
-    pub fn params(&self) -> &ParticleParams {
+    pub fn params(&self) -> &ParticleSettings {
         &self.params
     }
 
@@ -220,7 +220,7 @@ impl ParticleFilter {
 
     /// The weight update and resampling of [`ParticleFilter::update`] from scores already
     /// computed, one per particle (lower is better, in the units
-    /// [`ParticleParams::temperature`] is calibrated in; `None` or a non-finite score means
+    /// [`ParticleSettings::temperature`] is calibrated in; `None` or a non-finite score means
     /// likelihood 0), for a caller with its own similarity source: each weight is multiplied
     /// by `exp(−(s − s_min) / T)`. There is no grid here, so no registration blur, and the
     /// resampling, when the effective sample size calls for it, draws from the weighted
@@ -305,8 +305,8 @@ impl ParticleFilter {
         }
     }
 
-    /// Resample now (paper 002 eq. 6) by [`ParticleParams::resampling`], then jitter every
-    /// particle by [`ParticleParams::roughening_m`]; the weights become equal.
+    /// Resample now (paper 002 eq. 6) by [`ParticleSettings::resampling`], then jitter every
+    /// particle by [`ParticleSettings::roughening_m`]; the weights become equal.
     pub fn resample(&mut self) {
         let indices = match self.params.resampling {
             Resampling::Systematic => {

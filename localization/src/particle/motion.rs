@@ -9,7 +9,7 @@ use super::{ParticleError, check};
 /// How odometry error grows with distance: the simulator's uncertainty disc read as a 3σ bound.
 ///
 /// The flight software grows a disc of radius `r = k_vo·d_vo + k_novo·d_novo` with the
-/// distance driven with and without Visual Odometry (paper 000 §2; `sim::uncertainty`'s
+/// distance driven with and without Visual Odometry (paper 000 §2; `sim::rover::uncertainty`'s
 /// `UncertaintyModel` with the same defaults, 5 % and 50 %). The filter reads that radius as
 /// [`MotionModel::disc_sigmas`] standard deviations of an isotropic Gaussian per axis: a leg adds
 /// noise of `σ = r / disc_sigmas` metres to each coordinate of every particle. With the default

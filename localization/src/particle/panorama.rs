@@ -3,16 +3,16 @@
 
 use super::filter::ParticleFilter;
 use super::motion::Prior;
-use super::params::ParticleParams;
+use super::params::ParticleSettings;
 use super::posterior::{Mode, Posterior};
 use super::{ParticleError, check};
-use crate::matcher::{MatchParams, OrbitalMap, RoverImages};
+use crate::matcher::{MatchSettings, OrbitalMap, RoverImages};
 
 /// Settings of a one-panorama localization (plain struct; defaults on each field).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct PanoramaFixSettings {
-    /// The filter (default: [`ParticleParams::default`]).
-    pub params: ParticleParams,
+    /// The filter (default: [`ParticleSettings::default`]).
+    pub params: ParticleSettings,
     /// Cell size of the mode search, metres (default: 1).
     pub mode_cell_m: f64,
     /// Smallest mass a second mode needs to make the belief ambiguous, 0..1 (default: 0.05).
@@ -22,7 +22,7 @@ pub struct PanoramaFixSettings {
 impl Default for PanoramaFixSettings {
     fn default() -> Self {
         Self {
-            params: ParticleParams::default(),
+            params: ParticleSettings::default(),
             mode_cell_m: 1.0,
             mode_min_mass: 0.05,
         }
@@ -57,7 +57,7 @@ pub fn localize_panorama(
     prior_radius_m: f64,
     orbital: &OrbitalMap<'_>,
     rover: &RoverImages<'_>,
-    match_params: &MatchParams,
+    match_params: &MatchSettings,
     settings: &PanoramaFixSettings,
     seed: u64,
 ) -> Result<PanoramaFix, ParticleError> {

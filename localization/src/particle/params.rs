@@ -1,4 +1,4 @@
-//! [`ParticleParams`]: the filter's settings (plain struct, defaults in `Default`).
+//! [`ParticleSettings`]: the filter's settings (plain struct, defaults in `Default`).
 
 use super::motion::MotionModel;
 use super::{ParticleError, check};
@@ -13,13 +13,13 @@ pub enum Resampling {
     /// KLD-adaptive: particles are drawn one at a time in proportion to their weights until
     /// their number reaches the KLD bound for the number of occupied bins (Fox 2003), so a
     /// concentrated belief keeps few particles and a spread one many, between
-    /// [`KldParams::min_particles`] and [`ParticleParams::particle_count`].
-    Kld(KldParams),
+    /// [`KldSettings::min_particles`] and [`ParticleSettings::particle_count`].
+    Kld(KldSettings),
 }
 
 /// Settings of [`Resampling::Kld`].
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
-pub struct KldParams {
+pub struct KldSettings {
     /// Bin side for counting occupied bins, metres, > 0 (default: 0.5 — two orbital pixels, a
     /// little above the matcher's ~0.3 m accuracy).
     pub bin_m: f64,
@@ -33,7 +33,7 @@ pub struct KldParams {
     pub min_particles: usize,
 }
 
-impl Default for KldParams {
+impl Default for KldSettings {
     fn default() -> Self {
         Self {
             bin_m: 0.5,
@@ -46,7 +46,7 @@ impl Default for KldParams {
 
 /// Particle filter settings (plain struct; units, ranges and defaults on each field).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
-pub struct ParticleParams {
+pub struct ParticleSettings {
     /// Particles drawn from the prior and kept by systematic resampling; the most kept by KLD
     /// resampling; ≥ 1 (default: 2000 — one update costs about the same with 1000 or 5000,
     /// the score surface dominates; see the module docs for timings).
@@ -55,7 +55,7 @@ pub struct ParticleParams {
     pub motion: MotionModel,
     /// Temperature `T` of the likelihood `exp(−(s − s_min) / T)`, in score units (census with
     /// the DEM term, as the onboard matcher runs: fraction of disagreeing bits + 0.3 × the DEM
-    /// score), > 0 (default: 0.006, with [`ParticleParams::registration_sigma_m`] = 0.15 m).
+    /// score), > 0 (default: 0.006, with [`ParticleSettings::registration_sigma_m`] = 0.15 m).
     ///
     /// Calibrated with `registration_sigma_m` on the synthetic benchmark set
     /// (`cargo run --release -p localization --example particle_temperature`: 264 cases, case
@@ -77,7 +77,7 @@ pub struct ParticleParams {
     /// orthorectification, the rover's heading and scale — metres, ≥ 0: the likelihood on the
     /// surface is convolved with an isotropic Gaussian of this σ
     /// ([`likelihood_grid`](super::likelihood_grid)) (default: 0.15, calibrated with
-    /// [`ParticleParams::temperature`]; the matcher's `sigma_floor_m` is the same 0.15 m,
+    /// [`ParticleSettings::temperature`]; the matcher's `sigma_floor_m` is the same 0.15 m,
     /// fitted independently). Applies to [`ParticleFilter::update`](super::ParticleFilter::update),
     /// not to scores given directly.
     pub registration_sigma_m: f64,
@@ -108,7 +108,7 @@ pub struct ParticleParams {
     pub max_surface_half_extent_m: f64,
 }
 
-impl Default for ParticleParams {
+impl Default for ParticleSettings {
     fn default() -> Self {
         Self {
             particle_count: 2000,
@@ -125,7 +125,7 @@ impl Default for ParticleParams {
     }
 }
 
-impl ParticleParams {
+impl ParticleSettings {
     /// Checks every field against the range its documentation gives.
     ///
     /// # Errors

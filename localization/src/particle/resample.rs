@@ -5,7 +5,7 @@ use std::collections::BTreeSet;
 use rand::RngExt;
 use rand_chacha::ChaCha8Rng;
 
-use super::params::KldParams;
+use super::params::KldSettings;
 
 /// Effective sample size `1 / Σ wᵢ²` of weights that sum to 1 (Kong, Liu and Wong 1994):
 /// N for equal weights, 1 when one particle holds everything; 0 for no weights.
@@ -74,7 +74,7 @@ pub fn kld_sample_count(bins: usize, epsilon: f64, z_quantile: f64) -> usize {
 pub(super) fn kld_indices(
     weights: &[f64],
     positions_m: &[[f64; 2]],
-    k: &KldParams,
+    k: &KldSettings,
     max: usize,
     rng: &mut ChaCha8Rng,
 ) -> Vec<usize> {
@@ -203,7 +203,7 @@ mod tests {
 
     #[test]
     fn kld_keeps_few_particles_for_a_concentrated_belief_and_many_for_a_spread_one() {
-        let k = KldParams::default();
+        let k = KldSettings::default();
         let mut rng = ChaCha8Rng::seed_from_u64(5);
         let n = 5000;
         let w = vec![1.0 / n as f64; n];

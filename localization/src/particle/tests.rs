@@ -4,10 +4,10 @@
 
 use super::resample::effective_sample_size;
 use super::*;
-fn params(n: usize) -> ParticleParams {
-    ParticleParams {
+fn params(n: usize) -> ParticleSettings {
+    ParticleSettings {
         particle_count: n,
-        ..ParticleParams::default()
+        ..ParticleSettings::default()
     }
 }
 
@@ -91,7 +91,7 @@ fn motion_noise_grows_like_the_simulator_disc() {
 #[test]
 fn weights_follow_the_temperature_and_skip_without_information() {
     let pos = vec![[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [3.0, 0.0]];
-    let p = ParticleParams {
+    let p = ParticleSettings {
         resample_threshold: 0.0,
         ..params(4)
     };
@@ -172,10 +172,10 @@ fn resamples_below_half_the_particles_and_keeps_the_count() {
 
 #[test]
 fn kld_resampling_shrinks_a_concentrated_belief() {
-    let p = ParticleParams {
+    let p = ParticleSettings {
         particle_count: 4000,
-        resampling: Resampling::Kld(KldParams::default()),
-        ..ParticleParams::default()
+        resampling: Resampling::Kld(KldSettings::default()),
+        ..ParticleSettings::default()
     };
     let prior = Prior::Disc {
         center_m: [50.0, 50.0],
@@ -220,8 +220,9 @@ fn deterministic_under_a_seed() {
 
 #[test]
 fn bad_inputs_are_errors() {
-    let bad =
-        |p: ParticleParams| ParticleFilter::new(&Prior::from_uncertainty_disc([0.0; 2], 1.0), p, 1);
+    let bad = |p: ParticleSettings| {
+        ParticleFilter::new(&Prior::from_uncertainty_disc([0.0; 2], 1.0), p, 1)
+    };
     assert!(matches!(
         bad(params(0)),
         Err(ParticleError::InvalidParameter {
@@ -231,21 +232,21 @@ fn bad_inputs_are_errors() {
     ));
     for (p, field) in [
         (
-            ParticleParams {
+            ParticleSettings {
                 temperature: 0.0,
                 ..params(5)
             },
             "params.temperature",
         ),
         (
-            ParticleParams {
+            ParticleSettings {
                 resample_threshold: 1.5,
                 ..params(5)
             },
             "params.resample_threshold",
         ),
         (
-            ParticleParams {
+            ParticleSettings {
                 motion: MotionModel {
                     k_vo: -0.1,
                     ..MotionModel::default()
@@ -255,10 +256,10 @@ fn bad_inputs_are_errors() {
             "params.motion.k_vo",
         ),
         (
-            ParticleParams {
-                resampling: Resampling::Kld(KldParams {
+            ParticleSettings {
+                resampling: Resampling::Kld(KldSettings {
                     min_particles: 6,
-                    ..KldParams::default()
+                    ..KldSettings::default()
                 }),
                 ..params(5)
             },

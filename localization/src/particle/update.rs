@@ -9,7 +9,7 @@ use super::likelihood::{bilinear_at, blur_separable, likelihood_grid};
 use super::params::Resampling;
 use super::resample::{effective_sample_size, kld_indices, systematic_indices};
 use crate::matcher::{
-    LocalizeError, MatchParams, OrbitalMap, RoverImages, ScoreSurface, score_surface,
+    LocalizeError, MatchSettings, OrbitalMap, RoverImages, ScoreSurface, score_surface,
 };
 
 /// The particles' bounding box cut into square tiles, each scored by its own surface; a point
@@ -44,19 +44,19 @@ impl ParticleFilter {
     ///
     /// 1. The score surface of `rover` against `orbital` (method, DEM weight and easting scale
     ///    from `match_params`; its search radius is not used) over the bounding box of the
-    ///    particles with weight, plus [`ParticleParams::surface_margin_m`], clipped to where
+    ///    particles with weight, plus [`ParticleSettings::surface_margin_m`], clipped to where
     ///    the orthomosaic fits on the map, in tiles of at most
-    ///    [`ParticleParams::max_surface_half_extent_m`].
+    ///    [`ParticleSettings::max_surface_half_extent_m`].
     /// 2. The likelihood [`likelihood_grid`](super::likelihood_grid) of each surface (all
     ///    relative to the lowest score of them all), read bilinearly at each particle,
     ///    multiplies its weight; particles that cannot be scored get weight 0.
-    /// 3. If the effective sample size is then below [`ParticleParams::resample_threshold`] ×
-    ///    N, resampling (eq. 6). With [`ParticleParams::resample_on_grid`] (the default) the
+    /// 3. If the effective sample size is then below [`ParticleSettings::resample_threshold`] ×
+    ///    N, resampling (eq. 6). With [`ParticleSettings::resample_on_grid`] (the default) the
     ///    particles are redrawn from the posterior evaluated on the surface's 25 cm grid — the
     ///    likelihood there times a Gaussian kernel density of the particles before this update
     ///    (bandwidth: twice the median nearest-neighbour distance, at most Silverman's rule
     ///    `σ · n_eff^(−1/6)` per axis, at least one pixel) — by the scheme of
-    ///    [`ParticleParams::resampling`] over the cells, each new particle placed uniformly in
+    ///    [`ParticleSettings::resampling`] over the cells, each new particle placed uniformly in
     ///    its cell. Otherwise, and if the grid posterior is empty, from the weighted particles
     ///    ([`ParticleFilter::resample`]).
     ///
@@ -78,16 +78,16 @@ impl ParticleFilter {
     /// [`ParticleError::Localize`] if the orthomosaic's pixel size differs from the map's or a
     /// buffer has the wrong length.
     ///
-    /// [`ParticleParams::surface_margin_m`]: super::ParticleParams::surface_margin_m
-    /// [`ParticleParams::max_surface_half_extent_m`]: super::ParticleParams::max_surface_half_extent_m
-    /// [`ParticleParams::resample_threshold`]: super::ParticleParams::resample_threshold
-    /// [`ParticleParams::resample_on_grid`]: super::ParticleParams::resample_on_grid
-    /// [`ParticleParams::resampling`]: super::ParticleParams::resampling
+    /// [`ParticleSettings::surface_margin_m`]: super::ParticleSettings::surface_margin_m
+    /// [`ParticleSettings::max_surface_half_extent_m`]: super::ParticleSettings::max_surface_half_extent_m
+    /// [`ParticleSettings::resample_threshold`]: super::ParticleSettings::resample_threshold
+    /// [`ParticleSettings::resample_on_grid`]: super::ParticleSettings::resample_on_grid
+    /// [`ParticleSettings::resampling`]: super::ParticleSettings::resampling
     pub fn update(
         &mut self,
         orbital: &OrbitalMap<'_>,
         rover: &RoverImages<'_>,
-        match_params: &MatchParams,
+        match_params: &MatchSettings,
     ) -> Result<UpdateReport, ParticleError> {
         let ess = self.effective_sample_size();
         let map = orbital.appearance;

@@ -15,7 +15,7 @@ fn unit(h: u64) -> f64 {
 /// integer hashing and `+`, `*`: no libm, so the bits do not depend on the platform.
 #[inline]
 #[must_use]
-pub(super) fn gaussian(seed: u64, ix: i64, iy: i64) -> f64 {
+pub(crate) fn gaussian(seed: u64, ix: i64, iy: i64) -> f64 {
     let h = hash2(seed, ix, iy);
     let sum = (h & 0xFFFF) + ((h >> 16) & 0xFFFF) + ((h >> 32) & 0xFFFF) + (h >> 48);
     // Each 16-bit part is uniform on {0, …, 65535}: mean 32767.5, variance (65536² − 1) / 12.

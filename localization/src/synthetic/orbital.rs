@@ -3,8 +3,9 @@
 use maps::Raster;
 use rayon::prelude::*;
 
+use super::image_ops::{bilinear, gaussian_blur, radiance};
 use super::noise::{SplitMix, ValueFbm, gaussian, sub_seed, value_row};
-use super::shading::{ExactDiv, HeightField, Sun, bilinear, gaussian_blur, radiance};
+use super::shading::{ExactDiv, HeightField, Sun};
 use super::statics::PatchStatics;
 use super::truth::RippleField;
 use super::{ORBITAL_DEM_RESOLUTION_M_PER_PX, SyntheticError, TruthPatch, check_param};
@@ -32,7 +33,7 @@ const TRACK_MEANDER_M: (f64, f64) = (2.0, 40.0);
 /// How the orbital camera and DEM see a truth patch (plain struct; defaults in `Default`).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(default, deny_unknown_fields)]
-pub struct OrbitalParams {
+pub struct OrbitalSettings {
     /// Direction the sunlight comes from, degrees clockwise from north, any finite value.
     /// (default: 250 — mid-afternoon, from the west-southwest, as HiRISE images Jezero)
     pub sun_azimuth_deg: f64,
@@ -92,7 +93,7 @@ pub struct OrbitalParams {
     pub ortho_displacement_wavelength_m: f64,
 }
 
-impl Default for OrbitalParams {
+impl Default for OrbitalSettings {
     fn default() -> Self {
         Self {
             sun_azimuth_deg: 250.0,
@@ -114,7 +115,7 @@ impl Default for OrbitalParams {
     }
 }
 
-impl OrbitalParams {
+impl OrbitalSettings {
     /// Checks every field against the range its documentation gives.
     ///
     /// # Errors
@@ -234,11 +235,11 @@ pub struct OrbitalProducts {
 /// [`ORBITAL_DEM_RESOLUTION_M_PER_PX`] cells plus white noise.
 ///
 /// # Errors
-/// [`SyntheticError::InvalidParameter`] if `p` fails [`OrbitalParams::validate`] or the patch's
+/// [`SyntheticError::InvalidParameter`] if `p` fails [`OrbitalSettings::validate`] or the patch's
 /// pixel size is not positive; [`SyntheticError::MalformedPatch`] if its rasters disagree.
 pub fn render_orbital(
     patch: &TruthPatch,
-    p: &OrbitalParams,
+    p: &OrbitalSettings,
     seed: u64,
 ) -> Result<OrbitalProducts, SyntheticError> {
     render_orbital_with(patch, p, seed, None)
@@ -252,7 +253,7 @@ pub fn render_orbital(
 /// As [`render_orbital`].
 pub(crate) fn render_orbital_with(
     patch: &TruthPatch,
-    p: &OrbitalParams,
+    p: &OrbitalSettings,
     seed: u64,
     statics: Option<&PatchStatics<'_>>,
 ) -> Result<OrbitalProducts, SyntheticError> {
@@ -500,7 +501,7 @@ impl Track {
 /// The dust devil tracks of the orbital epoch on `patch`: a Poisson number (mean
 /// `dust_devil_tracks_per_ha` × the patch area) of tracks through uniform points in any
 /// direction.
-fn dust_devil_tracks(patch: &TruthPatch, p: &OrbitalParams, seed: u64) -> Vec<Track> {
+fn dust_devil_tracks(patch: &TruthPatch, p: &OrbitalSettings, seed: u64) -> Vec<Track> {
     let (x0, y0, x1, y1) = patch.height_m.extent_m();
     let area_ha = ((x1 - x0) * (y1 - y0)).abs() / 1e4;
     let lambda = p.dust_devil_tracks_per_ha * area_ha;

@@ -5,9 +5,10 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
+use super::image_ops::{bilinear, radiance};
 use super::noise::{CachedValue, gaussian, sub_seed};
-use super::rover_params::RoverImagingParams;
-use super::shading::{ExactDiv, HeightField, Sun, bilinear, radiance};
+use super::rover_params::RoverImagingSettings;
+use super::shading::{ExactDiv, HeightField, Sun};
 use super::{
     ORTHO_RESOLUTION_M_PER_PX, ORTHO_SIZE_PX, ROVER_DEM_BLOCK_PX, SyntheticError, TruthPatch,
     check_param,
@@ -34,7 +35,7 @@ const MAX_FOOTPRINT_SAMPLES: usize = 5;
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct WedgeResponse {
     /// Azimuth of the wedge's left edge, degrees clockwise from north, 0..360; it spans
-    /// [`RoverImagingParams::wedge_width_deg`] clockwise from there.
+    /// [`RoverImagingSettings::wedge_width_deg`] clockwise from there.
     pub start_azimuth_deg: f64,
     /// Gain (dimensionless).
     pub gain: f64,
@@ -85,7 +86,7 @@ pub struct RoverObservation {
     /// noisy stereo heights of its 4 × 4 ortho pixels. Invalid cells hold 0.
     pub dem: Raster<f32>,
     /// Per DEM cell, row-major: whether it had at least
-    /// [`RoverImagingParams::dem_min_samples`] valid samples.
+    /// [`RoverImagingSettings::dem_min_samples`] valid samples.
     pub dem_valid: Vec<bool>,
     /// The rover's true map position, metres (x east, y north): truth, for scoring only.
     pub true_position_m: [f64; 2],
@@ -142,7 +143,7 @@ fn wedge_of(azimuth_deg: f64, wedges: &[WedgeResponse], width_deg: f64) -> Optio
 
 /// Renders the rover's post-drive orthomosaic and DEM at `rover_m`, deterministically.
 ///
-/// The mast camera stands [`RoverImagingParams::mast_height_m`] above the mean truth height of
+/// The mast camera stands [`RoverImagingSettings::mast_height_m`] above the mean truth height of
 /// the rover's footprint. A pixel of the 60 m window is valid if it lies between `min_range_m`
 /// and `max_range_m` of the rover, inside one of the evenly spaced wedges, on the patch, in
 /// sight of the camera (no truth terrain between them rises above the sight line), and not in
@@ -155,14 +156,14 @@ fn wedge_of(azimuth_deg: f64, wedges: &[WedgeResponse], width_deg: f64) -> Optio
 /// drawn are returned in [`RoverObservation::lighting`].
 ///
 /// # Errors
-/// [`SyntheticError::InvalidParameter`] if `p` fails [`RoverImagingParams::validate`] or
+/// [`SyntheticError::InvalidParameter`] if `p` fails [`RoverImagingSettings::validate`] or
 /// `rover_m` is not finite or the patch's pixel size is not positive;
 /// [`SyntheticError::MalformedPatch`] if the patch's rasters disagree;
 /// [`SyntheticError::RoverOutsidePatch`] if the rover is not on the patch.
 pub fn render_rover(
     patch: &TruthPatch,
     rover_m: [f64; 2],
-    p: &RoverImagingParams,
+    p: &RoverImagingSettings,
     seed: u64,
 ) -> Result<RoverObservation, SyntheticError> {
     p.validate()?;

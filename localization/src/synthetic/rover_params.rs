@@ -1,4 +1,4 @@
-//! [`RoverImagingParams`]: how the rover's mast cameras image the terrain, with validation.
+//! [`RoverImagingSettings`]: how the rover's mast cameras image the terrain, with validation.
 
 use super::{SyntheticError, check_param};
 
@@ -6,7 +6,7 @@ use super::{SyntheticError, check_param};
 /// `Default`). Ranges `[lo, hi]` are drawn uniformly per observation from the seed.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(default, deny_unknown_fields)]
-pub struct RoverImagingParams {
+pub struct RoverImagingSettings {
     /// Stereo wedges in the panorama, 1..=12; Perseverance takes 5, sometimes 3 or 4 (paper 000
     /// §4). They are spaced evenly in azimuth from a seeded start. (default: 4)
     pub wedge_count: usize,
@@ -76,7 +76,7 @@ pub struct RoverImagingParams {
     pub mosaic_offset_sigma_m: f64,
 }
 
-impl Default for RoverImagingParams {
+impl Default for RoverImagingSettings {
     fn default() -> Self {
         Self {
             wedge_count: 4,
@@ -104,7 +104,7 @@ impl Default for RoverImagingParams {
     }
 }
 
-impl RoverImagingParams {
+impl RoverImagingSettings {
     /// Checks every field against the range its documentation gives.
     ///
     /// # Errors
@@ -234,10 +234,10 @@ mod tests {
 
     #[test]
     fn defaults_are_valid_and_bad_values_are_named() {
-        assert!(RoverImagingParams::default().validate().is_ok());
-        let bad = RoverImagingParams {
+        assert!(RoverImagingSettings::default().validate().is_ok());
+        let bad = RoverImagingSettings {
             gamma_range: [1.2, 0.9],
-            ..RoverImagingParams::default()
+            ..RoverImagingSettings::default()
         };
         assert!(matches!(
             bad.validate(),
@@ -246,9 +246,9 @@ mod tests {
                 ..
             })
         ));
-        let bad = RoverImagingParams {
+        let bad = RoverImagingSettings {
             max_range_m: 1.0,
-            ..RoverImagingParams::default()
+            ..RoverImagingSettings::default()
         };
         assert!(bad.validate().is_err());
     }

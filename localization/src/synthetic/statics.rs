@@ -91,7 +91,7 @@ impl std::fmt::Debug for TerrainStatics {
 
 impl TerrainStatics {
     /// The fields of `layers` for an orbital epoch `migration_m` before the rover's
-    /// ([`super::OrbitalParams::ripple_migration_m`]), within `DEFAULT_BUDGET_BYTES`.
+    /// ([`super::OrbitalSettings::ripple_migration_m`]), within `DEFAULT_BUDGET_BYTES`.
     #[must_use]
     pub fn new(layers: Arc<MapLayers>, migration_m: f64) -> Self {
         Self::with_budget(layers, migration_m, DEFAULT_BUDGET_BYTES)
@@ -310,7 +310,8 @@ impl PatchStatics<'_> {
 mod tests {
     use super::*;
     use crate::synthetic::{
-        OrbitalParams, patch_grid, render_orbital, render_orbital_with, truth_patch, truth_patch_on,
+        OrbitalSettings, patch_grid, render_orbital, render_orbital_with, truth_patch,
+        truth_patch_on,
     };
     use maps::Raster;
 
@@ -342,7 +343,7 @@ mod tests {
     #[test]
     fn patches_with_the_tiles_equal_patches_without() {
         let layers = Arc::new(layers(0.0));
-        let params = OrbitalParams::default();
+        let params = OrbitalSettings::default();
         let statics = TerrainStatics::new(Arc::clone(&layers), params.ripple_migration_m);
         assert!(statics.serves(&layers, params.ripple_migration_m));
         for (k, (center, half)) in [

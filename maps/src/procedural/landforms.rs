@@ -8,7 +8,7 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use super::noise::{Fbm, gradient, sub_seed};
-use super::{DuneField, TerrainParams};
+use super::{DuneField, TerrainSettings};
 
 /// Coarsest relief wavelength, metres; octaves halve it down to 25 m.
 const RELIEF_WAVELENGTH_M: f64 = 400.0;
@@ -61,7 +61,7 @@ impl Crater {
 
 /// The craters of `p` (sanitised): over the map plus a margin, so edge craters are cut, not
 /// missing; at most [`MAX_CRATERS`].
-fn draw_craters(p: &TerrainParams) -> Vec<Crater> {
+fn draw_craters(p: &TerrainSettings) -> Vec<Crater> {
     let res = p.geo.resolution_m_per_px;
     let [ox, oy] = p.geo.origin_m;
     let (width_m, height_m) = (p.width_px as f64 * res, p.height_px as f64 * res);
@@ -96,7 +96,7 @@ fn draw_craters(p: &TerrainParams) -> Vec<Crater> {
 
 /// The bins (columns, rows) crater `c` reaches on the map of `p`, or `None` off the map.
 fn crater_bins(
-    p: &TerrainParams,
+    p: &TerrainSettings,
     c: &Crater,
 ) -> Option<(
     std::ops::RangeInclusive<usize>,
@@ -215,7 +215,7 @@ pub(super) struct Landforms {
 
 impl Landforms {
     /// Draws craters and ridges for `p` (already sanitised by the caller).
-    pub(super) fn new(p: &TerrainParams) -> Self {
+    pub(super) fn new(p: &TerrainSettings) -> Self {
         let (w, h) = (p.width_px, p.height_px);
         let res = p.geo.resolution_m_per_px;
         let [ox, oy] = p.geo.origin_m;
@@ -366,7 +366,7 @@ impl Landforms {
     /// Evaluations of a landform at a pixel the DEM pass makes for `p` (sanitised): each
     /// crater at every pixel of the bins it reaches, each ridge, dune field and sand patch at
     /// every pixel. The pass's time is about proportional to it.
-    pub(super) fn evaluations(p: &TerrainParams) -> u64 {
+    pub(super) fn evaluations(p: &TerrainSettings) -> u64 {
         let (w, h) = (p.width_px as u64, p.height_px as u64);
         let bin_px = BIN_PX as u64;
         // Pixels of bins `from..to` along a side of `n` pixels (the last bin may be short).
@@ -431,19 +431,19 @@ mod tests {
 
     #[test]
     fn craters_are_counted_by_density_and_ridges_ignore_it() {
-        let base = TerrainParams {
+        let base = TerrainSettings {
             crater_density_per_km2: 0.0,
-            ..TerrainParams::default()
+            ..TerrainSettings::default()
         };
         assert_eq!(Landforms::new(&base).crater_count(), 0);
-        let dense = TerrainParams {
+        let dense = TerrainSettings {
             crater_density_per_km2: 50.0,
-            ..TerrainParams::default()
+            ..TerrainSettings::default()
         };
         // 1 km² map plus a 180 m ejecta margin: 1.36² km² × 50 ≈ 92.
         let n = Landforms::new(&dense).crater_count();
         assert!((91..=93).contains(&n), "{n}");
-        let ridge = |p: &TerrainParams| {
+        let ridge = |p: &TerrainSettings| {
             Landforms::new(p)
                 .ridges
                 .iter()
@@ -456,14 +456,14 @@ mod tests {
     #[test]
     fn evaluations_are_the_work_of_the_bins_and_the_other_landforms() {
         // 1000 × 700 px: the last bins are short on both sides.
-        let p = TerrainParams {
+        let p = TerrainSettings {
             width_px: 1000,
             height_px: 700,
             crater_density_per_km2: 200.0,
             crater_radius_max_m: 90.0,
             ridge_count: 4,
             sand_patches: vec![([10.0, 10.0], 5.0)],
-            ..TerrainParams::default()
+            ..TerrainSettings::default()
         }
         .sanitized();
         let l = Landforms::new(&p);

@@ -9,7 +9,7 @@ use tiff::decoder::Decoder;
 use tiff::tags::Tag;
 
 use super::RasterError;
-use super::geotiff::{read_f64s, tiff_error};
+use super::tiff_tags::{read_f64s, tiff_error};
 use crate::mars_crs::{MARS_RADIUS_M, MapCrs, MarsEquirectangular};
 
 /// GeoKey ids and values used here (GeoTIFF 1.1 Annex B).

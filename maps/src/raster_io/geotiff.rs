@@ -33,18 +33,20 @@ use std::fs::File;
 use std::io::{BufReader, BufWriter, Read, Seek};
 use std::path::Path;
 
+use tiff::ColorType;
 use tiff::decoder::{Decoder, DecodingResult, Limits};
 use tiff::encoder::colortype::{self, ColorType as EncColorType};
 use tiff::encoder::{Compression, DeflateLevel, Predictor, TiffEncoder, TiffValue};
 use tiff::tags::Tag;
-use tiff::{ColorType, TiffError};
+
+use super::tiff_tags::{read_f64s, tiff_error};
 
 use super::geokeys::{
     GT_MODEL_TYPE, GT_RASTER_TYPE, GeoKeyTags, LINEAR_METRE, MODEL_TYPE_GEOGRAPHIC,
     PROJ_LINEAR_UNITS, RASTER_PIXEL_IS_POINT, read_geokeys,
 };
 use super::sealed::{Samples, SamplesRef};
-use super::{RasterError, Sample, check_geo, check_shape, read_io_error, write_atomic};
+use super::{RasterError, Sample, check_geo, check_shape, write_atomic};
 use crate::mars_crs::MapCrs;
 use crate::raster::{GeoTransform, Raster};
 
@@ -236,25 +238,6 @@ fn kind_of<T: Sample>() -> Kind {
     }
 }
 
-/// Maps a tiff error to [`RasterError::Io`], or to `Decode` / `Encode` as `decoding` says.
-pub(super) fn tiff_error(path: &Path, decoding: bool) -> impl Fn(TiffError) -> RasterError + '_ {
-    move |e| match e {
-        TiffError::IoError(source) if decoding => read_io_error(path, source),
-        TiffError::IoError(source) => RasterError::Io {
-            path: path.to_path_buf(),
-            source,
-        },
-        other if decoding => RasterError::Decode {
-            path: path.to_path_buf(),
-            detail: other.to_string(),
-        },
-        other => RasterError::Encode {
-            path: path.to_path_buf(),
-            detail: other.to_string(),
-        },
-    }
-}
-
 /// Reads the first image of a GeoTIFF whose sample kind `accept` allows (`expected` describes
 /// what is allowed, for the error), with its georeference (or `georef`) and no-data value.
 pub(super) fn read_samples(
@@ -359,23 +342,6 @@ fn describe(color: ColorType, sample_format: u16) -> String {
         _ => format!("{color:?}"),
     };
     format!("{}-bit {number} {layout}", color.bit_depth())
-}
-
-pub(super) fn read_f64s<R: Read + Seek>(
-    dec: &mut Decoder<R>,
-    path: &Path,
-    tag: Tag,
-) -> Result<Option<Vec<f64>>, RasterError> {
-    let Some(value) = dec.find_tag(tag).map_err(tiff_error(path, true))? else {
-        return Ok(None);
-    };
-    let values = value
-        .into_f64_vec()
-        .map_err(|e| RasterError::BadGeoreference {
-            path: path.to_path_buf(),
-            detail: format!("{tag:?} that is not a list of numbers ({e})"),
-        })?;
-    Ok(Some(values))
 }
 
 /// The north-up square-pixel transform described by the file's GeoTIFF tags.

@@ -1,25 +1,30 @@
 //! `[[activities]]` entries (tasks and drives) → [`planner::Activity`].
 
 use planner::{Activity, ActivityKind, Drive, Timeline};
+use sim::rover::autonav::RoverSettings;
 
 use super::raw::{RawActivity, RawDrive};
-use crate::check::{Check, lmst_of};
+use crate::check::{FieldCheck, lmst_of};
 use crate::error::ScenarioError;
-use crate::scenario::ranges;
+use crate::ranges;
 
 /// Default shortest drive segment when a drive gives no `min_segment_min`, minutes.
 pub const DEFAULT_MIN_SEGMENT_MIN: f64 = 10.0;
 /// Default most segments of a drive without explicit or state-based split points.
 pub const DEFAULT_MAX_SEGMENTS: u32 = 4;
 pub(crate) fn drive(
-    c: &Check<'_>,
+    c: &FieldCheck<'_>,
     f: &str,
     d: &RawDrive,
     state_every_m: &[f64],
 ) -> Result<Drive, ScenarioError> {
-    let length_m = ranges::DRIVE_LENGTH_M.check(c, &format!("{f}.length_m"), d.length_m)?;
-    let rate_m_per_h =
-        ranges::DRIVE_RATE_M_PER_H.check(c, &format!("{f}.rate_m_per_h"), d.rate_m_per_h)?;
+    let length_m = c.range(ranges::DRIVE_LENGTH_M, &format!("{f}.length_m"), d.length_m)?;
+    // A drive's rate is a rover's: AutoNav's range.
+    let rate_m_per_h = c.range(
+        RoverSettings::DRIVE_RATE_RANGE_M_PER_H,
+        &format!("{f}.rate_m_per_h"),
+        d.rate_m_per_h,
+    )?;
     // The planner takes drives of at most 3 sols (259 200 s).
     let drive_s = 3600.0 * length_m / rate_m_per_h;
     if drive_s > 259_200.0 {
@@ -91,7 +96,7 @@ fn first_segment_s(d: &Drive) -> i64 {
 }
 
 pub(crate) fn activity(
-    c: &Check<'_>,
+    c: &FieldCheck<'_>,
     f: &str,
     a: &RawActivity,
     (start_s, end_s): (i64, i64),

@@ -4,12 +4,12 @@
 use planner::{Activity, Campaign, CampaignIntent};
 
 use super::raw::{RawCampaign, RawTemplate};
-use crate::check::{Check, lmst_of};
+use crate::check::{FieldCheck, lmst_of};
 use crate::error::ScenarioError;
-use crate::scenario::ranges;
+use crate::ranges;
 
 fn template(
-    c: &Check<'_>,
+    c: &FieldCheck<'_>,
     f: &str,
     t: Option<&RawTemplate>,
     campaign_id: &str,
@@ -42,7 +42,7 @@ fn template(
 /// A task activity from its fields at `{f}.duration_min`, `{f}.power_w` and `{f}.data_mb`
 /// (checked; windows left at 0 for the caller to set).
 pub(crate) fn task(
-    c: &Check<'_>,
+    c: &FieldCheck<'_>,
     f: &str,
     id: String,
     name: &str,
@@ -64,7 +64,7 @@ pub(crate) fn task(
 }
 
 fn only_for(
-    c: &Check<'_>,
+    c: &FieldCheck<'_>,
     f: &str,
     intent: &str,
     fields: &[(&str, bool)],
@@ -82,7 +82,7 @@ fn only_for(
 }
 
 pub(crate) fn campaign(
-    c: &Check<'_>,
+    c: &FieldCheck<'_>,
     f: &str,
     rc: &RawCampaign,
     (start_s, end_s): (i64, i64),
@@ -185,8 +185,8 @@ pub(crate) fn campaign(
         "state_based" => {
             only_for(c, f, "state_based", &periodic_fields)?;
             only_for(c, f, "state_based", &[("members", rc.members.is_some())])?;
-            let every_m = ranges::CADENCE_M.check(
-                c,
+            let every_m = c.range(
+                ranges::CADENCE_M,
                 &format!("{f}.every_m"),
                 rc.every_m.ok_or_else(|| {
                     c.err(
@@ -196,8 +196,8 @@ pub(crate) fn campaign(
                     )
                 })?,
             )?;
-            let tolerance_m = ranges::CADENCE_TOLERANCE_M.check(
-                c,
+            let tolerance_m = c.range(
+                ranges::CADENCE_TOLERANCE_M,
                 &format!("{f}.tolerance_m"),
                 rc.tolerance_m.unwrap_or(0.0),
             )?;

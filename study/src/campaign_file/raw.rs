@@ -124,7 +124,7 @@ pub(crate) struct RawTarget {
     pub(crate) id: String,
     #[serde(default)]
     pub(crate) name: String,
-    pub(crate) position_m: crate::scenario::Pair,
+    pub(crate) position_m: crate::pair::Pair,
     pub(crate) within_m: f64,
     pub(crate) duration_min: f64,
     pub(crate) power_w: f64,

@@ -2,9 +2,11 @@
 
 use std::path::PathBuf;
 
+use maps::PerTerrain;
 use serde::Deserialize;
 
-use crate::expect::RawExpectation;
+use crate::expect::raw::RawExpectation;
+use crate::pair::Pair;
 
 /// The file as written.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
@@ -80,6 +82,18 @@ pub(crate) struct RawPerTerrain {
     pub(crate) bedrock: Option<f64>,
 }
 
+impl RawPerTerrain {
+    /// The values given, `default`'s for the classes not given (none given: `default`).
+    pub(crate) fn over(raw: Option<&Self>, default: PerTerrain) -> PerTerrain {
+        let Some(raw) = raw else { return default };
+        PerTerrain {
+            sand: raw.sand.unwrap_or(default.sand),
+            soil: raw.soil.unwrap_or(default.soil),
+            bedrock: raw.bedrock.unwrap_or(default.bedrock),
+        }
+    }
+}
+
 #[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawRover {
@@ -152,7 +166,7 @@ pub(crate) struct RawOperations {
 }
 
 /// `[calendar]`: uplinks and restricted sols computed from Mars time and the team's rules
-/// (`sim::ops_calendar`), instead of typed per sol.
+/// (`sim::operations::ops_calendar`), instead of typed per sol.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawCalendar {
@@ -192,44 +206,4 @@ pub(crate) struct RawSol {
     pub(crate) historic_source: Option<String>,
     #[serde(default)]
     pub(crate) note: String,
-}
-
-/// Exactly two numbers, `[x, y]`. serde's `[f64; 2]` reads the first two numbers of a longer
-/// array and drops the rest, so a 3-D waypoint `[x, y, z]` passed with its altitude ignored.
-#[derive(Debug, Clone, Copy, PartialEq, schemars::JsonSchema)]
-#[schemars(transparent)]
-pub(crate) struct Pair(pub(crate) [f64; 2]);
-
-impl<'de> Deserialize<'de> for Pair {
-    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        struct Visitor;
-        const EXPECTED: &str = "[x, y]: exactly two numbers (map metres, no altitude)";
-        impl<'de> serde::de::Visitor<'de> for Visitor {
-            type Value = Pair;
-            fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-                f.write_str(EXPECTED)
-            }
-            fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut seq: A) -> Result<Pair, A::Error> {
-                use serde::de::Error;
-                let x = seq.next_element::<f64>()?;
-                let y = seq.next_element::<f64>()?;
-                let (Some(x), Some(y)) = (x, y) else {
-                    return Err(A::Error::invalid_length(
-                        usize::from(x.is_some()),
-                        &EXPECTED,
-                    ));
-                };
-                let mut len = 2;
-                while seq.next_element::<serde::de::IgnoredAny>()?.is_some() {
-                    len += 1;
-                }
-                if len == 2 {
-                    Ok(Pair([x, y]))
-                } else {
-                    Err(A::Error::invalid_length(len, &EXPECTED))
-                }
-            }
-        }
-        deserializer.deserialize_seq(Visitor)
-    }
 }
