@@ -79,11 +79,14 @@
 //! - M. P. Golombek and D. Rapp, "Size-frequency distributions of rocks on Mars and Earth
 //!   analog sites", J. Geophys. Res. 102, 1997 (rock populations by terrain).
 
+mod bedforms;
+mod ground_look;
 mod image_ops;
 mod noise;
 mod orbital;
+mod rocks;
 mod rover;
-mod rover_params;
+mod rover_settings;
 mod shading;
 mod statics;
 mod truth;
@@ -95,7 +98,7 @@ pub use orbital::{OrbitalProducts, OrbitalSettings, render_orbital};
 pub use rover::{
     RoverGeometryErrors, RoverLighting, RoverObservation, WedgeResponse, render_rover,
 };
-pub use rover_params::RoverImagingSettings;
+pub use rover_settings::RoverImagingSettings;
 pub use statics::TerrainStatics;
 pub use truth::{TruthPatch, truth_patch};
 pub(crate) use truth::{patch_grid, truth_patch_on};

@@ -3,11 +3,11 @@
 use maps::Raster;
 use rayon::prelude::*;
 
+use super::bedforms::RippleField;
 use super::image_ops::{bilinear, gaussian_blur, radiance};
 use super::noise::{SplitMix, ValueFbm, gaussian, sub_seed, value_row};
 use super::shading::{ExactDiv, HeightField, Sun};
 use super::statics::PatchStatics;
-use super::truth::RippleField;
 use super::{ORBITAL_DEM_RESOLUTION_M_PER_PX, SyntheticError, TruthPatch, check_param};
 
 const SALT_IMAGE_NOISE: u64 = 11;

@@ -23,7 +23,8 @@ use maps::{GeoTransform, MapLayers, TerrainClass};
 use rayon::prelude::*;
 
 use super::TRUTH_RESOLUTION_M_PER_PX;
-use super::truth::{RippleField, SandCoverField, terrain_corners};
+use super::bedforms::{RippleField, SandCoverField};
+use super::ground_look::terrain_corners;
 
 /// Tile side, world pixels (16 m at 25 cm).
 const TILE_PX: usize = 64;
