@@ -151,7 +151,7 @@ pub fn run(
             serde_json::to_string_pretty(&json_doc(&request, &inp, &m))?
         )?;
     } else {
-        write!(out, "{}", table(&inp, &m, inp.dem_used()))?;
+        write!(out, "{}", table(&inp, &m))?;
     }
     Ok(m)
 }

@@ -154,7 +154,7 @@ fn import_cmd(a: &ImportArgs, budget: MemoryBudget, out: &mut impl Write) -> any
         imported.recipe_toml.as_bytes(),
     )?;
     // Passages: placed where the replay, run without them, starts each sol.
-    set.write(&scenario_file, imported.scenario_toml.as_bytes())?;
+    let scenario_path = set.write(&scenario_file, imported.scenario_toml.as_bytes())?;
     set.write(
         &zones_file,
         br#"{"type": "FeatureCollection", "features": []}"#,
@@ -166,7 +166,6 @@ fn import_cmd(a: &ImportArgs, budget: MemoryBudget, out: &mut impl Write) -> any
     let bare = study::Scenario::load_within(&staged, budget)?;
     let (zones, passages) = imported.place_passages(&imported.passage_starts(&bare));
     set.write(&zones_file, zones.as_bytes())?;
-    let scenario_path = set.write(&scenario_file, imported.scenario_toml.as_bytes())?;
     set.write(
         "import-report.txt",
         imported.report_text(passages).as_bytes(),

@@ -49,7 +49,7 @@ enum SweepCommand {
 #[derive(Args, Clone)]
 struct SweepWhat {
     /// Run indices 0..RUNS of every strategy. Run 0 uses the scenario's seed; run i ≥ 1 a seed
-    /// derived from it (sim::seeds::run_seed), the same for every strategy.
+    /// derived from it (sim::seeds::RunSeeds::new), the same for every strategy.
     #[arg(long, value_name = "N", required = true)]
     runs: Option<u64>,
     /// Comma-separated strategies (replay, ground, onboard, extension, extension+onboard)

@@ -45,9 +45,9 @@ pub fn run(a: &WhatifArgs, budget: MemoryBudget, stdout: &mut dyn Write) -> anyh
     let variant = Scenario::load_within(&a.variant, budget)?;
     let plan = WhatifRun::new(&base, &variant, strategy, a.runs, budget)?;
     let progress = Progress::new(false, "whatif", "runs", 2 * a.runs);
-    let mut w = plan.run(&|done, total| progress.update(done, total));
+    let w = plan.run(&|done, total| progress.update(done, total));
     progress.finish();
-    w.differences = plan.differences()?;
+    let w = w?;
     if a.json {
         writeln!(stdout, "{}", serde_json::to_string_pretty(&w)?)?;
     } else {

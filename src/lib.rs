@@ -27,6 +27,7 @@ pub mod cmd_map;
 pub mod cmd_package;
 pub mod cmd_plan;
 pub mod cmd_record;
+pub mod cmd_regress;
 pub mod cmd_report;
 pub mod cmd_route;
 pub mod cmd_slip_profile;

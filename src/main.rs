@@ -11,7 +11,6 @@ use anyhow::Context as _;
 use clap::{Args, Parser, Subcommand};
 
 use maps::MemoryBudget;
-use outputs::regress;
 use outputs::run_files::write_atomic;
 use solsim::{cmd_compare, cmd_localize, cmd_localize_rasters, cmd_map, cmd_package, cmd_zones};
 
@@ -93,7 +92,7 @@ enum Command {
     Replay(cmd_compare::ReplayArgs),
     /// Run every scenario's [[expect]] entries in a directory; exit 1 and print a diff on any
     /// mismatch.
-    Regress(RegressArgs),
+    Regress(solsim::cmd_regress::RegressArgs),
     /// Write a commented starter scenario that runs as written: SCENARIO.toml and, beside it,
     /// SCENARIO.map/ (a procedural map, its recipe, zones.geojson with one example keep-out).
     ///
@@ -257,25 +256,6 @@ enum MapCommand {
     Package(cmd_package::PackageArgs),
 }
 
-#[derive(Args)]
-struct RegressArgs {
-    /// Directory of scenario files (every *.toml in it).
-    dir: PathBuf,
-    /// Also write a JUnit XML report here (for CI).
-    #[arg(long, value_name = "FILE")]
-    junit: Option<PathBuf>,
-    /// Print JSON instead of the text report: `{"passed", "failed", "cases": [{"scenario",
-    /// "case", "what", "ok", "measured", "mismatches": [{"check", "expected", "got"}],
-    /// "seconds"}]}`. The exit code is the same (1 on a mismatch).
-    #[arg(long)]
-    json: bool,
-    /// No progress on standard error. Without it, a terminal shows a bar over every [[expect]]
-    /// entry with the scenario and stage beside it; a piped or redirected standard error shows
-    /// nothing either way.
-    #[arg(long, short)]
-    quiet: bool,
-}
-
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -412,48 +392,7 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Replay(a) => {
             cmd_compare::run_one(&a.scenario, "replay", &a.output, budget, stdout)
         }
-        Command::Regress(a) => {
-            let files = regress::scenario_files(&a.dir)
-                .with_context(|| format!("{}: cannot list scenario files", a.dir.display()))?;
-            if files.is_empty() {
-                anyhow::bail!("{}: no scenario files (*.toml) found", a.dir.display());
-            }
-            // Progress over every [[expect]] entry, the scenario and stage beside the bar.
-            let total: usize = files.iter().map(|f| regress::count_expectations(f)).sum();
-            let progress =
-                solsim::progress::Progress::new(a.quiet, "regress", "checks", total as u64);
-            let results = regress::check_scenarios(&files, budget, &|f, stage| match stage {
-                regress::Stage::Loading => {
-                    progress.set_message(format!("{}: loading", f.display()));
-                }
-                regress::Stage::OneRun { name, checks } if checks > 0 => {
-                    progress.set_message(format!("{name}: {checks} checks on one run per strategy"))
-                }
-                regress::Stage::OverRuns { name, checks } if checks > 0 => {
-                    progress.set_message(format!("{name}: {checks} checks over runs (sweeps)"));
-                }
-                regress::Stage::Checked(n) => progress.inc_by(n as u64),
-                _ => {}
-            });
-            progress.finish();
-            let results = results?;
-            if a.json {
-                writeln!(stdout, "{}", regress::json_report(&results))?;
-            } else {
-                write!(stdout, "{}", regress::text_report(&results))?;
-            }
-            if let Some(path) = &a.junit {
-                write_atomic(path, regress::junit(&results).as_bytes()).with_context(|| {
-                    format!("{}: cannot write the JUnit report", path.display())
-                })?;
-            }
-            let failed = results.iter().any(|r| !r.mismatches.is_empty());
-            Ok(if failed {
-                ExitCode::from(1)
-            } else {
-                ExitCode::SUCCESS
-            })
-        }
+        Command::Regress(a) => solsim::cmd_regress::run(&a, budget, stdout),
         Command::Validate(a) => solsim::cmd_validate::run(&a, budget, stdout),
         Command::Init(a) => {
             solsim::cmd_init::run(&a, budget, stdout)?;
@@ -555,9 +494,7 @@ fn man_pages(
             .version(env!("CARGO_PKG_VERSION"));
         clap_mangen::Man::new(cmd).render(&mut roff)?;
         let path = dir.join(format!("{name}.1"));
-        let tmp = dir.join(format!(".{name}.1.tmp"));
-        std::fs::write(&tmp, roff).with_context(|| format!("--out: {}", tmp.display()))?;
-        std::fs::rename(&tmp, &path).with_context(|| format!("--out: {}", path.display()))?;
+        write_atomic(&path, &roff).with_context(|| format!("--out: {}", path.display()))?;
         Ok(pages)
     }
     let pages = write_all(cmd, "solsim".into(), dir)?;

@@ -4,7 +4,7 @@
 //!
 //! Now a goal-directed walk answers the legs whose goal is their own bottleneck (the same
 //! value and cell, held to the full search by a property test in `sim::grid::widest_path`), the legs
-//! run in parallel, and a route is refused over `sim::run::campaign::MAX_WAYPOINTS` (10 000) or when
+//! run in parallel, and a route is refused over `sim::run::MAX_WAYPOINTS` (10 000) or when
 //! its legs' search windows cover more than `MAX_LEG_SEARCH_CELLS` (3e8) grid cells together,
 //! before any search runs. `validate`, `run` and `compare` draw a bar over the legs on a
 //! terminal.

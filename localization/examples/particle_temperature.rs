@@ -63,7 +63,7 @@ fn render(
     // which would not hold the window around the truth).
     let _ = prior_m;
     let half_size_m = WINDOW_M + half_ortho_m + PATCH_MARGIN_M;
-    let rover_params = RoverImagingSettings {
+    let rover_settings = RoverImagingSettings {
         wedge_count: usize::from(case.wedges),
         sun_azimuth_range_deg: [case.sun_azimuth_deg; 2],
         sun_elevation_range_deg: [case.sun_elevation_deg; 2],
@@ -71,7 +71,7 @@ fn render(
     };
     let patch = truth_patch(layers, truth_m, half_size_m, truth_seed).ok()?;
     let orbital = render_orbital(&patch, &OrbitalSettings::default(), orbital_seed).ok()?;
-    let rover = render_rover(&patch, truth_m, &rover_params, rover_seed).ok()?;
+    let rover = render_rover(&patch, truth_m, &rover_settings, rover_seed).ok()?;
     let map = OrbitalMap::of(&orbital);
     let images = RoverImages::of(&rover);
     let surface = score_surface(&map, &images, truth_m, [WINDOW_M; 2], p).ok()?;

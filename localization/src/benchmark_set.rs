@@ -5,7 +5,7 @@
 //!
 //! - [`benchmark_cases`] draws the cases (`n`, seed); the paper's set has [`PAPER_CASE_COUNT`].
 //! - [`BenchmarkMaps::generate`] makes the three procedural terrain maps in memory
-//!   ([`terrain_params`] defines them).
+//!   ([`terrain_settings`] defines them).
 //! - [`run_benchmark`] renders and localizes every case (rayon over cases; the results are
 //!   collected in case order and the statistics computed sequentially, so the report does not
 //!   depend on the thread count) and returns a [`BenchmarkReport`].
@@ -82,7 +82,7 @@ impl TerrainKind {
 /// The generator settings of the procedural map of `kind` ([`MAP_SIZE_M`] square, 1 m
 /// pixels, x and y in `0..MAP_SIZE_M`).
 #[must_use]
-pub fn terrain_params(kind: TerrainKind, seed: u64) -> TerrainSettings {
+pub fn terrain_settings(kind: TerrainKind, seed: u64) -> TerrainSettings {
     let size = MAP_SIZE_M;
     let base = TerrainSettings {
         seed,
@@ -164,13 +164,13 @@ pub struct BenchmarkMaps {
 }
 
 impl BenchmarkMaps {
-    /// Generates the three maps of [`terrain_params`] from `seed` (about a second in release).
+    /// Generates the three maps of [`terrain_settings`] from `seed` (about a second in release).
     #[must_use]
     pub fn generate(seed: u64) -> Self {
         Self {
-            rocky: generate(&terrain_params(TerrainKind::Rocky, seed)),
-            plain: generate(&terrain_params(TerrainKind::Plain, seed.wrapping_add(1))),
-            dunes: generate(&terrain_params(TerrainKind::Dunes, seed.wrapping_add(2))),
+            rocky: generate(&terrain_settings(TerrainKind::Rocky, seed)),
+            plain: generate(&terrain_settings(TerrainKind::Plain, seed.wrapping_add(1))),
+            dunes: generate(&terrain_settings(TerrainKind::Dunes, seed.wrapping_add(2))),
         }
     }
 
@@ -399,7 +399,7 @@ pub fn render_case(
     let draws = case_draws(case, layers);
     let half_ortho_m = 0.5 * ORTHO_SIZE_PX as f64 * ORTHO_RESOLUTION_M_PER_PX;
     let half_size_m = search_radius_m + half_ortho_m + PATCH_MARGIN_M;
-    let rover_params = RoverImagingSettings {
+    let rover_settings = RoverImagingSettings {
         wedge_count: usize::from(case.wedges),
         sun_azimuth_range_deg: [case.sun_azimuth_deg; 2],
         sun_elevation_range_deg: [case.sun_elevation_deg; 2],
@@ -407,7 +407,7 @@ pub fn render_case(
     };
     let patch = truth_patch(layers, draws.prior_m, half_size_m, draws.truth_seed)?;
     let orbital = render_orbital(&patch, &imaging.orbital, draws.orbital_seed)?;
-    let rover = render_rover(&patch, draws.truth_m, &rover_params, draws.rover_seed)?;
+    let rover = render_rover(&patch, draws.truth_m, &rover_settings, draws.rover_seed)?;
     Ok((draws, orbital, rover))
 }
 

@@ -86,9 +86,9 @@ mod filter;
 mod likelihood;
 mod motion;
 mod panorama;
-mod params;
 mod posterior;
 mod resample;
+mod settings;
 #[cfg(test)]
 mod tests;
 mod update;
@@ -97,9 +97,9 @@ pub use filter::{ParticleFilter, SkipReason, UpdateReport};
 pub use likelihood::likelihood_grid;
 pub use motion::{MotionModel, Odometry, Prior};
 pub use panorama::{PanoramaFix, PanoramaFixSettings, localize_panorama, no_gain};
-pub use params::{KldSettings, ParticleSettings, Resampling};
 pub use posterior::{Ellipse, Mode, Posterior};
 pub use resample::{effective_sample_size, kld_sample_count, systematic_indices};
+pub use settings::{KldSettings, ParticleSettings, Resampling};
 
 use crate::matcher::LocalizeError;
 

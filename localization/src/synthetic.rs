@@ -26,7 +26,7 @@
 //!
 //! Rendering the map and the mosaic from one truth with perfect geometry localizes to ~5 mm;
 //! real data gives 0.36 m mean (paper 000 §4). Each real error source is a field of the
-//! params structs, with unit, default and source (or "judgement") in its documentation:
+//! settings structs, with unit, default and source (or "judgement") in its documentation:
 //!
 //! - orbital effective resolution: [`OrbitalSettings::blur_sigma_px`] (σ 1 px, HiRISE MTF);
 //! - a different orbital epoch: smooth albedo change ([`OrbitalSettings::albedo_change_sigma`]),

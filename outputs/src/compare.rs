@@ -41,7 +41,7 @@ use crate::verdict::verdict;
 pub enum CompareError {
     /// A figure could not be drawn.
     #[error(transparent)]
-    Metric(#[from] FigureError),
+    Figure(#[from] FigureError),
     /// The output directory could not be written; the earlier one is untouched.
     #[error(transparent)]
     OutputSet(#[from] OutputSetError),

@@ -37,7 +37,7 @@ pub fn summary_json(summary: &Summary) -> String {
 }
 
 /// A signed number with a real minus sign.
-fn signed(x: f64, decimals: usize) -> String {
+pub(crate) fn signed(x: f64, decimals: usize) -> String {
     format!("{x:+.decimals$}").replace('-', "−")
 }
 

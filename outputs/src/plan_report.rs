@@ -129,8 +129,9 @@ pub fn plan_file(campaign: &Path, budget: PlanBudget) -> Result<PlanReport, Plan
         ..SearchSettings::default()
     };
     let instance = Instance::new(&file.problem).map_err(|e| file.planner_error(e))?;
-    let outcome = planner::plan(&file.problem, &settings).map_err(|e| file.planner_error(e))?;
     let state = State::initial(&instance);
+    let outcome =
+        planner::plan_from(&instance, &state, &settings).map_err(|e| file.planner_error(e))?;
     let violations = validate_plan(&instance, &state, &outcome.plan)
         .iter()
         .map(|v| describe(&instance, &outcome, v))

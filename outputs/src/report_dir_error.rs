@@ -231,7 +231,7 @@ pub enum ReportDirError {
     Sweep(#[from] sweep::SweepError),
     /// A figure could not be drawn.
     #[error(transparent)]
-    Metric(#[from] FigureError),
+    Figure(#[from] FigureError),
     /// `--out` cannot be written.
     #[error(transparent)]
     OutputSet(#[from] OutputSetError),

@@ -9,6 +9,8 @@ use study::Scenario;
 use sweep::engine::SweepResult;
 use sweep::summary::{Metric, RateKind, Statistics};
 
+use crate::over_runs::signed;
+
 /// A written file that cannot be read back.
 #[derive(Debug, thiserror::Error)]
 #[error("{}: cannot read what was written", path.display())]
@@ -152,11 +154,6 @@ fn plural(n: u64, what: &str) -> String {
 
 fn pct(x: f64) -> String {
     format!("{:.1}", 100.0 * x)
-}
-
-fn signed(x: f64, decimals: usize) -> String {
-    let t = format!("{x:+.decimals$}");
-    t.replace('-', "−")
 }
 
 /// The printed report of a sweep that took `seconds` on `threads` worker threads: what ran, where

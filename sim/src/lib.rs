@@ -6,7 +6,7 @@
 //! route on the [`grid::PlanningGrid`] (zones grown by the [`rover::uncertainty`] disc, slope
 //! hazards), faulting with `NO_PATH` when no path is left; the onboard [`localizers`] fix the
 //! position after the drive → a [`run::outcome::SolRecord`] → next sol. A [`run::Simulation`]
-//! steps it a sol at a time; [`run::run_campaign`] runs it to the end.
+//! steps it a sol at a time (`finish` runs it to the end).
 //!
 //! The folders, by domain:
 //!
@@ -48,6 +48,6 @@ pub mod time;
 pub use grid::PlanningGrid;
 pub use operations::{Calendar, SolEntry, Strategy};
 pub use rover::{RoverSettings, UncertaintyModel};
+pub use run::Simulation;
 pub use run::outcome::{CampaignOutcome, DriveEnd, Fault, FaultKind, SolRecord, Totals};
-pub use run::{Simulation, run_campaign};
 pub use settings::{FieldError, PhysicalRange, Settings, SettingsError};

@@ -53,6 +53,7 @@ use rand_chacha::ChaCha8Rng;
 use crate::rover::autonav::RoverState;
 use crate::rover::uncertainty::UncertaintyModel;
 use crate::run::outcome::{LocalizationEvent, PositionEllipse, RejectionReason};
+use crate::seeds::{Purpose, RunSeeds};
 use crate::settings::field_error::FieldError;
 use crate::settings::physical_range::PhysicalRange;
 use crate::time::SolSeconds;
@@ -97,10 +98,9 @@ pub struct PostDrive<'a> {
     pub model: &'a UncertaintyModel,
     /// Added to the localizer's σ after a fix, metres.
     pub operator_margin_m: f64,
-    /// Seed of the run's true terrain (the world post-drive imagery is rendered from).
-    pub world_truth_seed: u64,
-    /// Seed of the run's orbital map (what the imagery is matched against).
-    pub world_orbital_seed: u64,
+    /// The run's seeds: its world (the true terrain the post-drive imagery is rendered from,
+    /// the orbital map it is matched against) and any stream a localizer draws from.
+    pub seeds: RunSeeds,
     /// When the chain's first co-processor step starts (not before midnight).
     pub start: SolSeconds,
     /// The run's random stream.
@@ -124,8 +124,8 @@ impl PostDrive<'_> {
             truth_m: [truth.x, truth.y],
             prior_m: [estimate.x, estimate.y],
             uncertainty_m,
-            truth_seed: self.world_truth_seed,
-            orbital_seed: self.world_orbital_seed,
+            truth_seed: self.seeds.stream(Purpose::WorldTruth).seed,
+            orbital_seed: self.seeds.stream(Purpose::WorldOrbital).seed,
             sol_seed,
         }
     }

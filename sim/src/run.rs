@@ -1,7 +1,7 @@
 //! Running a strategy over a scenario, sol by sol.
 //!
 //! - [`simulation`]: [`Simulation`], one run stepped a sol at a time (inspect it between sols);
-//!   [`run_campaign`] steps it to the end.
+//!   [`Simulation::finish`] steps it to the end.
 //! - `sol` (private): one drive sol executed — its plan step by step, AutoNav, the localization
 //!   chain.
 //! - [`legs`]: the route's passage clearances, once per scenario ([`leg_clearances`]).
@@ -18,4 +18,4 @@ pub use legs::{
     LEG_WINDOW_MARGIN_M, MAX_LEG_SEARCH_CELLS, MAX_WAYPOINTS, leg_clearances,
     leg_clearances_observed, leg_search_cells,
 };
-pub use simulation::{Simulation, run_campaign};
+pub use simulation::Simulation;

@@ -142,21 +142,3 @@ impl Settings {
         Ok(())
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The shortest step at the fastest rate covers a whole sol within the loop bound, so
-    /// [`crate::rover::autonav::MAX_STEPS_PER_SOL`] never ends an in-range drive early.
-    #[test]
-    fn the_step_bound_holds_a_whole_sol_at_the_fastest_rate() {
-        let metres =
-            RoverSettings::DRIVE_RATE_RANGE_M_PER_H.max * f64::from(crate::time::SOL_S) / 3_600.0;
-        let steps = metres / RoverSettings::STEP_RANGE_M.min;
-        assert!(
-            steps < crate::rover::autonav::MAX_STEPS_PER_SOL as f64,
-            "{steps}"
-        );
-    }
-}

@@ -1,6 +1,6 @@
 //! The field checks every file format shares (scenario, `[science]`, campaign files): each
 //! returns a one-line [`ScenarioError`] naming the file and the TOML field, worded alike. A
-//! simulator settings struct checks its own fields ([`FieldError`]); [`Check::setting`] names
+//! simulator settings struct checks its own fields ([`FieldError`]); [`FieldCheck::setting`] names
 //! the file's field for it.
 
 use std::path::Path;
@@ -63,7 +63,7 @@ impl FieldCheck<'_> {
     ) -> Result<f64, ScenarioError> {
         range.check(field, v).map_err(|e| self.field_error(e))
     }
-    /// A value in `lo ..= hi` `unit`: [`Check::range`] of a range given in place.
+    /// A value in `lo ..= hi` `unit`: [`FieldCheck::range`] of a range given in place.
     pub(crate) fn in_range(
         &self,
         field: &str,
@@ -104,7 +104,7 @@ impl FieldCheck<'_> {
             )
         })
     }
-    /// [`Check::lmst`] as the `planner` crate's seconds after local midnight (campaign files
+    /// [`FieldCheck::lmst`] as the `planner` crate's seconds after local midnight (campaign files
     /// build planner problems).
     pub(crate) fn lmst_s(&self, field: &str, v: &str) -> Result<i64, ScenarioError> {
         self.lmst(field, v).map(SolSeconds::planner_s)

@@ -12,6 +12,7 @@
 //! - [`calibrate`]: calibrated constants re-derived from a scenario's historic record.
 //! - [`expect`]: the `[[expect]]` entries of a scenario ([`Expectation`]) and their validation
 //!   (`sweep::expect` checks them).
+//! - [`metric`]: the run metrics a sweep or a comparison reports ([`metric::Metric`]).
 //! - [`campaign_file`]: the one-sol campaign files of `solsim plan` ([`CampaignFile`]).
 //! - [`recipe`]: procedural map recipes of `solsim map generate`; [`generated_map`]: what the
 //!   command says of a map made from one.

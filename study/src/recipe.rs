@@ -110,9 +110,7 @@ fn validate(path: &Path, recipe: RawRecipe, budget: MemoryBudget) -> Result<Reci
         MAX_RESOLUTION_M,
         "metres per pixel",
     )?;
-    let coordinate = |field: &str, v: f64| {
-        c.in_range(field, v, -MAX_COORDINATE_M, MAX_COORDINATE_M, "map metres")
-    };
+    let coordinate = |field: &str, v: f64| c.range(crate::ranges::COORDINATE_M, field, v);
     coordinate("terrain.geo.origin_m[0]", t.geo.origin_m[0])?;
     coordinate("terrain.geo.origin_m[1]", t.geo.origin_m[1])?;
     let height = |field: &str, v: f64| c.in_range(field, v, -MAX_HEIGHT_M, MAX_HEIGHT_M, "metres");

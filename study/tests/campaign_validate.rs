@@ -1,4 +1,4 @@
-//! `Settings::validate` accepts what the loader builds and refuses a hand-built campaign the
+//! `Settings::validate` accepts what the loader builds and refuses hand-built settings the
 //! runner could not trust.
 
 use sim::{FieldError, SettingsError};

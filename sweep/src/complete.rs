@@ -112,7 +112,7 @@ pub(crate) fn verify_complete(
         MAX_SUMMARY_BYTES,
         maps::input_file::Follow::No,
     )
-    .map_err(|e| SweepError::unreadable(&summary_path, e))?;
+    .map_err(|e| SweepError::io(&summary_path, "cannot read", e))?;
     if on_disk != text.as_bytes() {
         return Err(SweepError::format(
             dir.join("summary.json"),

@@ -220,7 +220,6 @@ pub fn run(
     resume: bool,
     progress: &(dyn Fn(u64, u64) + Sync),
 ) -> Result<SweepResult, SweepError> {
-    let segment = scenario.study_segment;
     let (manifest, _lock) = prepare(dir, Manifest::fresh(scenario, spec), resume)?;
     let range = spec.run_range();
     let total = range.end - range.start;
@@ -274,7 +273,7 @@ pub fn run(
             let results: Vec<(RunRow, Vec<SolRow>)> = chunk
                 .clone()
                 .into_par_iter()
-                .flat_map_iter(|run| run_rows(scenario, spec, segment, run))
+                .flat_map_iter(|run| run_rows(scenario, spec, run))
                 .collect();
             let run_rows: Vec<RunRow> = results.iter().map(|(r, _)| r.clone()).collect();
             let sol_rows: Vec<SolRow> = results.into_iter().flat_map(|(_, s)| s).collect();
@@ -325,10 +324,8 @@ fn commit_chunk(
     m: &mut Manifest,
     dir: &Path,
 ) -> Result<(), SweepError> {
-    let bug = |e: arrow_schema::ArrowError| SweepError::Io {
-        path: chunks_dir.to_path_buf(),
-        what: "cannot build the rows of a chunk".into(),
-        message: e.to_string(),
+    let bug = |e: arrow_schema::ArrowError| {
+        SweepError::io(chunks_dir, "cannot build the rows of a chunk", e)
     };
     let runs_path = chunks_dir.join(chunk_name("runs", chunk.start, chunk.end));
     let sols_path = chunks_dir.join(chunk_name("sols", chunk.start, chunk.end));

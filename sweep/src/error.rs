@@ -95,21 +95,13 @@ impl SweepError {
         }
     }
 
-    /// A [`SweepError::Io`] error: `what` failed on `path` (`cannot create`, `cannot list`).
-    pub fn io(path: &std::path::Path, what: &str, e: std::io::Error) -> Self {
+    /// A [`SweepError::Io`] error: `what` failed on `path` (`cannot create`, `cannot list`,
+    /// `cannot read` for an input that is missing, not a regular file or too large), with the
+    /// cause's message.
+    pub fn io(path: &std::path::Path, what: &str, e: impl std::fmt::Display) -> Self {
         SweepError::Io {
             path: path.to_path_buf(),
             what: what.into(),
-            message: e.to_string(),
-        }
-    }
-
-    /// A [`SweepError::Io`] error: `path` cannot be read as an input (missing, not a regular
-    /// file, too large).
-    pub fn unreadable(path: &std::path::Path, e: maps::input_file::InputFileError) -> Self {
-        SweepError::Io {
-            path: path.to_path_buf(),
-            what: "cannot read".into(),
             message: e.to_string(),
         }
     }

@@ -36,11 +36,8 @@ impl DirLock {
     /// [`SweepError::Option`] when another process holds a conflicting lock;
     /// [`SweepError::Io`] when the directory cannot be opened.
     pub fn take(dir: &Path, kind: LockKind, option: &str) -> Result<Self, SweepError> {
-        let file = File::open(dir).map_err(|e| SweepError::Io {
-            path: dir.to_path_buf(),
-            what: "cannot open the directory to lock it".into(),
-            message: e.to_string(),
-        })?;
+        let file = File::open(dir)
+            .map_err(|e| SweepError::io(dir, "cannot open the directory to lock it", e))?;
         #[cfg(unix)]
         {
             use std::os::fd::AsRawFd as _;
@@ -71,11 +68,7 @@ impl DirLock {
                         ),
                     ));
                 }
-                return Err(SweepError::Io {
-                    path: dir.to_path_buf(),
-                    what: "cannot lock the directory".into(),
-                    message: e.to_string(),
-                });
+                return Err(SweepError::io(dir, "cannot lock the directory", e));
             }
         }
         Ok(Self { _dir: file })

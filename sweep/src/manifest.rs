@@ -118,11 +118,9 @@ pub fn sha256_file(path: &Path) -> Result<String, SweepError> {
     let mut hasher = sha2::Sha256::new();
     let mut block = vec![0_u8; 1 << 16];
     loop {
-        let n = file.read(&mut block).map_err(|e| SweepError::Io {
-            path: path.to_path_buf(),
-            what: "cannot read".into(),
-            message: e.to_string(),
-        })?;
+        let n = file
+            .read(&mut block)
+            .map_err(|e| SweepError::io(path, "cannot read", e))?;
         if n == 0 {
             break;
         }
@@ -225,11 +223,8 @@ impl Manifest {
     /// # Errors
     /// A write error.
     pub fn write(&self, dir: &Path) -> Result<(), SweepError> {
-        let mut text = serde_json::to_string_pretty(self).map_err(|e| SweepError::Io {
-            path: dir.join(MANIFEST),
-            what: "cannot serialise".into(),
-            message: e.to_string(),
-        })?;
+        let mut text = serde_json::to_string_pretty(self)
+            .map_err(|e| SweepError::io(&dir.join(MANIFEST), "cannot serialise", e))?;
         text.push('\n');
         parquet_io::write_durably(&dir.join(MANIFEST), text.as_bytes())
     }

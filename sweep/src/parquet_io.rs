@@ -40,7 +40,7 @@ pub const MAX_TABLE_BYTES: u64 = 1 << 40;
 pub fn open_owned(path: &Path, limit_bytes: u64) -> Result<File, SweepError> {
     maps::input_file::open_input(path, limit_bytes, maps::input_file::Follow::No)
         .map(|(file, _)| file)
-        .map_err(|e| io_err(path, "cannot read", e))
+        .map_err(|e| SweepError::io(path, "cannot read", e))
 }
 
 /// Rows per batch handed to the Parquet writer.
@@ -58,14 +58,6 @@ pub struct TableWriter {
     writer: ArrowWriter<BufWriter<File>>,
     pending: Vec<RecordBatch>,
     pending_rows: usize,
-}
-
-fn io_err(path: &Path, what: &str, e: impl std::fmt::Display) -> SweepError {
-    SweepError::Io {
-        path: path.to_path_buf(),
-        what: what.to_string(),
-        message: e.to_string(),
-    }
 }
 
 /// The temporary name a file is written under before its rename (`.NAME.tmp`).
@@ -88,7 +80,7 @@ impl TableWriter {
         metadata: &[(String, String)],
     ) -> Result<Self, SweepError> {
         let tmp = tmp_path(path);
-        let file = File::create(&tmp).map_err(|e| io_err(&tmp, "cannot create", e))?;
+        let file = File::create(&tmp).map_err(|e| SweepError::io(&tmp, "cannot create", e))?;
         let mut kv: Vec<KeyValue> = metadata
             .iter()
             .map(|(k, v)| KeyValue::new(k.clone(), v.clone()))
@@ -100,7 +92,7 @@ impl TableWriter {
             .set_key_value_metadata(Some(kv))
             .build();
         let writer = ArrowWriter::try_new(BufWriter::new(file), schema.clone(), Some(props))
-            .map_err(|e| io_err(path, "cannot start the Parquet writer for", e))?;
+            .map_err(|e| SweepError::io(path, "cannot start the Parquet writer for", e))?;
         Ok(Self {
             path: path.to_path_buf(),
             tmp,
@@ -117,14 +109,14 @@ impl TableWriter {
     /// A batch whose columns differ from the table's, or a write error.
     pub fn push(&mut self, batch: &RecordBatch) -> Result<(), SweepError> {
         if batch.schema().fields() != self.schema.fields() {
-            return Err(io_err(
+            return Err(SweepError::io(
                 &self.path,
                 "rows with other columns than the table's cannot go into",
                 "schema mismatch",
             ));
         }
         let batch = RecordBatch::try_new(self.schema.clone(), batch.columns().to_vec())
-            .map_err(|e| io_err(&self.path, "cannot rebuild a batch for", e))?;
+            .map_err(|e| SweepError::io(&self.path, "cannot rebuild a batch for", e))?;
         self.pending_rows += batch.num_rows();
         self.pending.push(batch);
         while self.pending_rows >= FEED_ROWS {
@@ -136,11 +128,11 @@ impl TableWriter {
     /// Writes the first `rows` pending rows as one batch.
     fn feed(&mut self, rows: usize) -> Result<(), SweepError> {
         let all = arrow_select::concat::concat_batches(&self.schema, &self.pending)
-            .map_err(|e| io_err(&self.path, "cannot concatenate rows for", e))?;
+            .map_err(|e| SweepError::io(&self.path, "cannot concatenate rows for", e))?;
         let head = all.slice(0, rows);
         self.writer
             .write(&head)
-            .map_err(|e| io_err(&self.path, "cannot write", e))?;
+            .map_err(|e| SweepError::io(&self.path, "cannot write", e))?;
         let rest = all.num_rows() - rows;
         self.pending = if rest > 0 {
             vec![all.slice(rows, rest)]
@@ -162,12 +154,12 @@ impl TableWriter {
         let buffered = self
             .writer
             .into_inner()
-            .map_err(|e| io_err(&self.path, "cannot finish", e))?;
+            .map_err(|e| SweepError::io(&self.path, "cannot finish", e))?;
         let file = buffered
             .into_inner()
-            .map_err(|e| io_err(&self.tmp, "cannot flush", e.error()))?;
+            .map_err(|e| SweepError::io(&self.tmp, "cannot flush", e.error()))?;
         file.sync_all()
-            .map_err(|e| io_err(&self.tmp, "cannot sync", e))?;
+            .map_err(|e| SweepError::io(&self.tmp, "cannot sync", e))?;
         drop(file);
         rename_durably(&self.tmp, &self.path)
     }
@@ -178,7 +170,7 @@ impl TableWriter {
 /// # Errors
 /// The rename or the directory sync fails.
 pub fn rename_durably(from: &Path, to: &Path) -> Result<(), SweepError> {
-    std::fs::rename(from, to).map_err(|e| io_err(to, "cannot rename into place", e))?;
+    std::fs::rename(from, to).map_err(|e| SweepError::io(to, "cannot rename into place", e))?;
     if let Some(dir) = to.parent() {
         let dir = if dir.as_os_str().is_empty() {
             Path::new(".")
@@ -187,7 +179,7 @@ pub fn rename_durably(from: &Path, to: &Path) -> Result<(), SweepError> {
         };
         File::open(dir)
             .and_then(|d| d.sync_all())
-            .map_err(|e| io_err(dir, "cannot sync the directory", e))?;
+            .map_err(|e| SweepError::io(dir, "cannot sync the directory", e))?;
     }
     Ok(())
 }
@@ -198,10 +190,10 @@ pub fn rename_durably(from: &Path, to: &Path) -> Result<(), SweepError> {
 /// A write, sync or rename error.
 pub fn write_durably(path: &Path, bytes: &[u8]) -> Result<(), SweepError> {
     let tmp = tmp_path(path);
-    let mut file = File::create(&tmp).map_err(|e| io_err(&tmp, "cannot create", e))?;
+    let mut file = File::create(&tmp).map_err(|e| SweepError::io(&tmp, "cannot create", e))?;
     file.write_all(bytes)
         .and_then(|()| file.sync_all())
-        .map_err(|e| io_err(&tmp, "cannot write", e))?;
+        .map_err(|e| SweepError::io(&tmp, "cannot write", e))?;
     drop(file);
     rename_durably(&tmp, path)
 }
@@ -229,7 +221,7 @@ pub fn table_batches(
 ) -> Result<impl Iterator<Item = Result<RecordBatch, SweepError>> + use<>, SweepError> {
     let file = open_owned(path, MAX_TABLE_BYTES)?;
     let builder = ParquetRecordBatchReaderBuilder::try_new(file)
-        .map_err(|e| io_err(path, "is not a readable Parquet file:", e))?;
+        .map_err(|e| SweepError::io(path, "is not a readable Parquet file:", e))?;
     if builder.schema().fields() != schema.fields() {
         let got: Vec<&str> = builder
             .schema()
@@ -266,7 +258,7 @@ pub fn table_batches(
     let reader = builder
         .with_batch_size(FEED_ROWS)
         .build()
-        .map_err(|e| io_err(path, "cannot read", e))?;
+        .map_err(|e| SweepError::io(path, "cannot read", e))?;
     let path = path.to_path_buf();
-    Ok(reader.map(move |b| b.map_err(|e| io_err(&path, "cannot decode", e))))
+    Ok(reader.map(move |b| b.map_err(|e| SweepError::io(&path, "cannot decode", e))))
 }

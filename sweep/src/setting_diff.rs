@@ -110,11 +110,8 @@ pub fn differences_of(
     variant: &Scenario,
 ) -> Result<Vec<SettingDifference>, SweepError> {
     let read = |s: &Scenario| {
-        maps::input_file::read_text_file(&s.path).map_err(|e| SweepError::Io {
-            path: s.path.clone(),
-            what: "cannot read it again".to_owned(),
-            message: e.to_string(),
-        })
+        maps::input_file::read_text_file(&s.path)
+            .map_err(|e| SweepError::io(&s.path, "cannot read it again", e))
     };
     let all =
         setting_differences(&read(base)?, &read(variant)?).map_err(|e| SweepError::Reread {

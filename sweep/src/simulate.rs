@@ -8,7 +8,6 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 use rayon::prelude::*;
 use study::Scenario;
-use study::scenario::StudySegment;
 
 use crate::manifest::Manifest;
 use crate::rows::{self, RunRow, SolRow};
@@ -19,9 +18,9 @@ use crate::summary::{Summary, summarise};
 pub(crate) fn run_rows(
     scenario: &Scenario,
     spec: &SweepSpec,
-    segment: Option<StudySegment>,
     run: u64,
 ) -> Vec<(RunRow, Vec<SolRow>)> {
+    let segment = scenario.study_segment;
     let seeds = sim::seeds::RunSeeds::new(spec.seed, run);
     spec.strategies
         .par_iter()
@@ -30,8 +29,8 @@ pub(crate) fn run_rows(
 }
 
 /// Runs `runs` under every strategy, in parallel over runs and strategies, and returns the
-/// run rows in run order (strategies in `spec` order): a sweep without files, for
-/// `solsim regress`'s statistical expectations.
+/// run rows in run order (strategies in `spec` order): a sweep without files, for the
+/// statistical `[[expect]]` checks (`solsim regress`) and `sweep::whatif`.
 #[must_use]
 pub fn run_in_memory(scenario: &Scenario, spec: &SweepSpec, runs: Range<u64>) -> Vec<RunRow> {
     rows_in_memory(scenario, spec, runs, &|_, _| {})
@@ -44,12 +43,11 @@ fn rows_in_memory(
     runs: Range<u64>,
     progress: &(dyn Fn(u64, u64) + Sync),
 ) -> Vec<RunRow> {
-    let segment = scenario.study_segment;
     let total = runs.end - runs.start;
     let done = AtomicU64::new(0);
     runs.into_par_iter()
         .flat_map_iter(|run| {
-            let rows: Vec<RunRow> = run_rows(scenario, spec, segment, run)
+            let rows: Vec<RunRow> = run_rows(scenario, spec, run)
                 .into_iter()
                 .map(|(r, _)| r)
                 .collect();

@@ -333,11 +333,8 @@ pub(crate) fn summarise(rows: &[RunRow], manifest: &Manifest) -> Summary {
 
 /// `summary.json`'s text for `summary` (pretty JSON and a newline).
 pub(crate) fn summary_text(summary: &Summary, dir: &Path) -> Result<String, SweepError> {
-    let mut text = serde_json::to_string_pretty(summary).map_err(|e| SweepError::Io {
-        path: dir.join("summary.json"),
-        what: "cannot serialise".into(),
-        message: e.to_string(),
-    })?;
+    let mut text = serde_json::to_string_pretty(summary)
+        .map_err(|e| SweepError::io(&dir.join("summary.json"), "cannot serialise", e))?;
     text.push('\n');
     Ok(text)
 }

@@ -117,36 +117,32 @@ impl<'a> WhatifRun<'a> {
         })
     }
 
-    /// Runs both and pairs them ([`compare`]); `progress(done, total)` is called with the runs
-    /// done of both. The settings that differ are left to [`WhatifRun::differences`].
-    #[must_use]
-    pub fn run(&self, progress: &dyn Fn(u64, u64)) -> Whatif {
+    /// Runs both, pairs them and lists the settings that differ between the two files
+    /// ([`differences_of`]); `progress(done, total)` is called with the runs done of both.
+    ///
+    /// # Errors
+    /// A file that cannot be read again for its settings.
+    pub fn run(&self, progress: &dyn Fn(u64, u64)) -> Result<Whatif, SweepError> {
         let (runs, [spec_base, spec_variant]) = (self.runs, &self.specs);
         let rows_base = crate::engine::run_in_memory(self.base, spec_base, 0..runs);
         progress(runs, 2 * runs);
         let rows_variant = crate::engine::run_in_memory(self.variant, spec_variant, 0..runs);
-        compare(
+        let mut w = compare(
             self.base,
             self.variant,
             self.strategy,
             runs,
             &rows_base,
             &rows_variant,
-        )
-    }
-
-    /// The settings that differ between the two files ([`differences_of`]).
-    ///
-    /// # Errors
-    /// A file that cannot be read again.
-    pub fn differences(&self) -> Result<Vec<SettingDifference>, SweepError> {
-        differences_of(self.base, self.variant)
+        );
+        w.differences = differences_of(self.base, self.variant)?;
+        Ok(w)
     }
 }
 
-/// Pair the two run tables (same run indices, one strategy) figure by figure.
-#[must_use]
-pub fn compare(
+/// Pair the two run tables (same run indices, one strategy) figure by figure; the settings
+/// that differ are filled in by [`WhatifRun::run`].
+fn compare(
     base: &Scenario,
     variant: &Scenario,
     strategy: Strategy,

@@ -52,8 +52,6 @@ pub struct Innovation<const M: usize> {
     pub covariance: SMatrix<f64, M, M>,
 }
 
-impl<const M: usize> Innovation<M> {}
-
 /// `f(x, u)`: the state's time derivative for accelerometer `accel_xy` (body x, y, m/s²) and
 /// yaw rate `yaw_rate` (rad/s).
 fn derivative(x: &StateVector, accel_xy: &Vector2<f64>, yaw_rate: f64) -> StateVector {

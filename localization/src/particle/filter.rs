@@ -6,9 +6,9 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
 
 use super::motion::{Odometry, Prior};
-use super::params::{ParticleSettings, Resampling};
 use super::posterior::{Ellipse, Mode, Posterior, mean_and_covariance, modes};
 use super::resample::{effective_sample_size, kld_indices, systematic_indices};
+use super::settings::{ParticleSettings, Resampling};
 use super::{ParticleError, check};
 
 /// Why a measurement update left the weights as they were (an outcome, not an error).

@@ -3,8 +3,8 @@
 
 use super::filter::ParticleFilter;
 use super::motion::Prior;
-use super::params::ParticleSettings;
 use super::posterior::{Mode, Posterior};
+use super::settings::ParticleSettings;
 use super::{ParticleError, check};
 use crate::matcher::{MatchSettings, OrbitalMap, RoverImages};
 

@@ -5,7 +5,7 @@ use std::collections::BTreeSet;
 use rand::RngExt;
 use rand_chacha::ChaCha8Rng;
 
-use super::params::KldSettings;
+use super::settings::KldSettings;
 
 /// Effective sample size `1 / Σ wᵢ²` of weights that sum to 1 (Kong, Liu and Wong 1994):
 /// N for equal weights, 1 when one particle holds everything; 0 for no weights.

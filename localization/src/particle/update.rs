@@ -6,8 +6,8 @@ use rand::RngExt;
 use super::ParticleError;
 use super::filter::{ParticleFilter, SkipReason, UpdateReport};
 use super::likelihood::{bilinear_at, blur_separable, likelihood_grid};
-use super::params::Resampling;
 use super::resample::{effective_sample_size, kld_indices, systematic_indices};
+use super::settings::Resampling;
 use crate::matcher::{
     LocalizeError, MatchSettings, OrbitalMap, RoverImages, ScoreSurface, score_surface,
 };

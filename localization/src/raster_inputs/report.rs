@@ -19,7 +19,8 @@ pub fn verdict(m: &MatchResult) -> String {
 
 /// The result as a table.
 #[must_use]
-pub fn table(inp: &LocalizeInputs, m: &MatchResult, dem_used: bool) -> String {
+pub fn table(inp: &LocalizeInputs, m: &MatchResult) -> String {
+    let dem_used = inp.dem_used();
     let [px, py] = inp.prior_m;
     let [x, y] = m.position_m;
     let [dx, dy] = m.correction_m;

@@ -7,7 +7,7 @@ use rayon::prelude::*;
 
 use super::image_ops::{bilinear, radiance};
 use super::noise::{CachedValue, gaussian, sub_seed};
-use super::rover_params::RoverImagingSettings;
+use super::rover_settings::RoverImagingSettings;
 use super::shading::{ExactDiv, HeightField, Sun};
 use super::{
     ORTHO_RESOLUTION_M_PER_PX, ORTHO_SIZE_PX, ROVER_DEM_BLOCK_PX, SyntheticError, TruthPatch,

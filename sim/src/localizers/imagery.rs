@@ -41,9 +41,7 @@ impl ImageryLocalizer {
             cache,
         }
     }
-}
 
-impl ImageryLocalizer {
     /// The co-processor slowdowns a localizer may run with, seconds per second of the
     /// development machine's run: the flown chain is 1758.2 (a flight-size run takes 32 s,
     /// paper 000); 1 is a co-processor as fast as a desktop; at 100,000 a run takes half an

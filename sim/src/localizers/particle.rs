@@ -56,9 +56,7 @@ impl ParticleLocalizer {
             cache,
         }
     }
-}
 
-impl ParticleLocalizer {
     /// The particle counts a filter may have: below 100 a 30 m prior is sampled a particle per
     /// 9 m²; above 100 000 an update holds hundreds of MB and takes seconds.
     pub const PARTICLE_COUNT_RANGE: PhysicalRange =

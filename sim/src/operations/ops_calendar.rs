@@ -87,9 +87,7 @@ impl TeamRules {
             holidays: years.flat_map(us_federal_holidays).collect(),
         }
     }
-}
 
-impl TeamRules {
     /// The delays and shift lengths within a day the rules may have, hours (`relay_latency_h`,
     /// `shift_hours`).
     pub const HOURS_RANGE: PhysicalRange = PhysicalRange::new(0.0, 24.0, "hours");

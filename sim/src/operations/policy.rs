@@ -15,7 +15,7 @@
 //!
 //! Every strategy stops after the route's end, on the calendar's no-drive sols (the replay
 //! follows its record instead), and after a fault until the ground has seen it.
-//! [`crate::run::run_campaign`] asks the policy at each uplink ([`Policy::plan`]) and each
+//! [`crate::run::Simulation`] asks the policy at each uplink ([`Policy::plan`]) and each
 //! sol ([`Policy::skip_reason`], [`Policy::drive_budget`]); it holds no `if strategy == …` of
 //! its own.
 

@@ -43,21 +43,21 @@
 //! Power figures are judgement for a Perseverance-class rover (an MMRTG of ~110 W and two
 //! Li-ion batteries of ~1.2 kWh each); every one is a field of [`SolPlanSettings`].
 //!
-//! The module is split by role: [`SolPlanSettings`] (the settings, in `params`), the planning
+//! The module is split by role: [`SolPlanSettings`] (the settings, in `settings`), the planning
 //! problem of a drive sol ([`sol_problem`] from a [`SolPlanRequest`], in `problem`), its
 //! execution ([`SolExecution`], in `execution`) and what the sol log keeps of it ([`SolPlan`],
 //! in `record`).
 
 mod execution;
-mod params;
 mod problem;
 mod record;
+mod settings;
 
 pub use execution::{Disruption, SolExecution, Step};
-pub use params::SolPlanSettings;
 pub(crate) use problem::note_sol_problem;
 pub use problem::{
     ChainDurations, LOCALIZATION_CHAIN, SOL_ACTIVITIES, SolPlanRequest, capture_sol_problems,
     planned_drive_m, planning_window, sol_problem,
 };
 pub use record::{SolPlan, SolPlanStatus, TimelineStep};
+pub use settings::SolPlanSettings;

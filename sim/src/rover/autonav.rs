@@ -31,9 +31,9 @@ use maps::{PerTerrain, TerrainClass};
 /// a sol that reaches it simply ends).
 pub const MAX_STEPS_PER_SOL: usize = 100_000;
 
-mod params;
+mod settings;
 
-pub use params::{ProfileSlip, RoverSettings, SlipModel};
+pub use settings::{ProfileSlip, RoverSettings, SlipModel};
 
 /// Probability that VO fails on a step at slip 1, added in proportion to slip above 0.2 (at
 /// slip `s`: `class rate + 0.5 × max(0, s − 0.2) / 0.8`). Judgement, not calibrated: a wheel

@@ -460,7 +460,7 @@ impl Totals {
     /// The totals of a run's sols: `goal_sol` is the sol it reached the goal, `remaining_m`
     /// the route left from its last estimate. The science tallies start empty.
     #[must_use]
-    pub fn of(records: &[SolRecord], goal_sol: Option<u32>, remaining_m: f64) -> Totals {
+    pub(crate) fn of(records: &[SolRecord], goal_sol: Option<u32>, remaining_m: f64) -> Totals {
         let first = records.first().map_or(0, |r| r.sol);
         Totals {
             sols: records.len() as u32,

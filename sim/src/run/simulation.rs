@@ -80,6 +80,7 @@ use crate::time::SolSeconds;
 /// let legs = leg_clearances(&settings);
 ///
 /// let mut sim = Simulation::new(&settings, Strategy::Onboard, &legs, RunSeeds::new(7, 0));
+/// assert_eq!((sim.strategy(), sim.next_sol()), (Strategy::Onboard, Some(100)));
 /// let mut log = Vec::new();
 /// while let Some(sol) = sim.step() {
 ///     // Between sols: what the sol did, and the rover now.
@@ -87,6 +88,8 @@ use crate::time::SolSeconds;
 ///     log.push((sol, metres, sim.uncertainty_m(), sim.rover().estimate.position_m.x));
 /// }
 /// assert_eq!(log.iter().map(|l| l.0).collect::<Vec<_>>(), [100, 101, 102]);
+/// // Three sols of about 25 m do not reach the end of the 150 m route.
+/// assert_eq!((sim.next_sol(), sim.goal_sol(), sim.sols().len()), (None, None, 3));
 /// // Each sol drives its 15-minute window, and the onboard localization after it keeps the
 /// // disc near the localizer's σ plus the margin (1.93 m), not growing with the distance.
 /// assert!(log.iter().all(|&(_, metres, r, _)| metres > 20.0 && r < 2.5), "{log:?}");
@@ -97,7 +100,6 @@ use crate::time::SolSeconds;
 pub struct Simulation<'a> {
     settings: &'a Settings,
     legs: &'a [LegClearance],
-    strategy: Strategy,
     seeds: RunSeeds,
     policy: Policy,
     rng: ChaCha8Rng,
@@ -160,7 +162,6 @@ impl<'a> Simulation<'a> {
         let mut sim = Self {
             settings,
             legs,
-            strategy,
             seeds,
             policy: Policy::new(strategy, c.rules),
             rng: seeds.stream(Purpose::Strategy(strategy)).rng(),
@@ -184,7 +185,7 @@ impl<'a> Simulation<'a> {
     /// The strategy being run.
     #[must_use]
     pub fn strategy(&self) -> Strategy {
-        self.strategy
+        self.policy.strategy
     }
 
     /// The run's seeds.
@@ -303,14 +304,15 @@ impl<'a> Simulation<'a> {
             );
         }
         CampaignOutcome {
-            strategy: self.strategy,
+            strategy: self.policy.strategy,
             seed: self.seeds.master(),
             sols: self.records,
             totals,
         }
     }
 
-    /// What the planners know of the passages ahead, and of the last localization they know of.
+    /// The plan's passage limit from the rover's last known fix ([`Policy::passage_budget`]),
+    /// from what the planners know of the passages ahead and of the last localization.
     fn passage_budget(&self) -> Option<PassageLimit> {
         let c = self.settings;
         let ahead = PassagesAhead {
@@ -533,18 +535,6 @@ impl<'a> Simulation<'a> {
             record.onboard_localization = Some(event);
         }
     }
-}
-
-/// Run `strategy` over the settings to the calendar's end: a [`Simulation`] stepped through
-/// every sol. `legs` comes from [`crate::run::leg_clearances`].
-#[must_use]
-pub fn run_campaign(
-    settings: &Settings,
-    strategy: Strategy,
-    legs: &[LegClearance],
-    seeds: RunSeeds,
-) -> CampaignOutcome {
-    Simulation::new(settings, strategy, legs, seeds).finish()
 }
 
 /// The last drive segment the sol's plan ran (`drive#4/5` → (4, 5)), if the plan split it.

@@ -27,7 +27,7 @@ use crate::rover::autonav::{
 use crate::rover::errors::SolErrors;
 use crate::rover::pose::estimate_error_m;
 use crate::run::outcome::{LocalizationEvent, LocalizationStep};
-use crate::seeds::{Purpose, RunSeeds};
+use crate::seeds::RunSeeds;
 use crate::settings::Settings;
 use crate::time::SolSeconds;
 use localization::hbs::HbsStep;
@@ -168,8 +168,7 @@ fn localize(
         rover: st.rover,
         model: &c.model,
         operator_margin_m: c.operator_margin_m,
-        world_truth_seed: env.seeds.stream(Purpose::WorldTruth).seed,
-        world_orbital_seed: env.seeds.stream(Purpose::WorldOrbital).seed,
+        seeds: env.seeds,
         start,
         rng: st.rng,
     });
@@ -210,7 +209,7 @@ fn localize(
 }
 
 /// Execute one drive sol's plan. `request` is the sol's plan request without science; the
-/// campaign's science candidates are added here.
+/// science candidates of the settings' campaigns ([`Settings::science`]) are added here.
 pub(crate) fn execute_sol(
     env: &SolEnv<'_>,
     st: &mut SolState<'_>,

@@ -83,6 +83,10 @@ pub(crate) fn computed_calendar(
     rules.relay_latency_h = raw.relay_latency_h.unwrap_or(rules.relay_latency_h);
     rules.light_time_min = raw.light_time_min.unwrap_or(rules.light_time_min);
     rules.shift_hours = raw.shift_hours.unwrap_or(rules.shift_hours);
+    // The numbers are checked before the shift start times are parsed (the order the loader
+    // has always reported two bad values in); the default start times pass, and the checks run
+    // again once the file's start times are in.
+    rules.validate().map_err(|e| c.setting(e, toml_path))?;
     if let Some(t) = &raw.shift_earliest_start_pt {
         rules.shift_earliest_start_pt_h = pasadena_clock(c, "calendar.shift_earliest_start_pt", t)?;
     }

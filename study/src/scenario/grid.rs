@@ -22,7 +22,7 @@ fn toml_path(field: &str) -> String {
 /// # Errors
 /// A [`ScenarioError`] naming the first `grid.…` (or `rover.footprint_radius_m`) field at
 /// fault.
-pub(crate) fn grid_params(
+pub(crate) fn grid_settings(
     c: &FieldCheck<'_>,
     raw: &RawGrid,
     raw_rover: &RawRover,

@@ -179,6 +179,14 @@ pub(crate) fn onboard_localization(
             if let Some(n) = l.particle_count {
                 params.particle_count = n as usize;
             }
+            ImageryLocalizer::validate_settings(&on_hbs).map_err(setting)?;
+            let fix = PanoramaFixSettings {
+                params,
+                ..PanoramaFixSettings::default()
+            };
+            ParticleLocalizer::validate_fix(&fix).map_err(setting)?;
+            // Parsed after the ranges above, so that of two bad values the first reported is
+            // the one the loader has always reported first.
             if let Some(r) = &l.resampling {
                 params.resampling = match r.as_str() {
                     "systematic" => Resampling::Systematic,
@@ -192,12 +200,6 @@ pub(crate) fn onboard_localization(
                     }
                 };
             }
-            ImageryLocalizer::validate_settings(&on_hbs).map_err(setting)?;
-            let fix = PanoramaFixSettings {
-                params,
-                ..PanoramaFixSettings::default()
-            };
-            ParticleLocalizer::validate_fix(&fix).map_err(setting)?;
             LocalizerSpec::Particle {
                 params,
                 hbs_slowdown,

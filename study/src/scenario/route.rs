@@ -1,14 +1,14 @@
 //! `[route]`: the waypoints, start first, in map metres (on the map: checked by
 //! `Scenario::build` once the map is read).
 
-use sim::run as campaign;
+use sim::run;
 
 use super::raw::RawRoute;
 use crate::check::FieldCheck;
 use crate::error::ScenarioError;
 use crate::ranges;
 
-/// The route's waypoints: a start and a goal at least, at most [`campaign::MAX_WAYPOINTS`],
+/// The route's waypoints: a start and a goal at least, at most [`run::MAX_WAYPOINTS`],
 /// each coordinate on the planet.
 ///
 /// # Errors
@@ -17,12 +17,12 @@ pub(crate) fn waypoints(
     c: &FieldCheck<'_>,
     raw: &RawRoute,
 ) -> Result<Vec<[f64; 2]>, ScenarioError> {
-    if !(2..=campaign::MAX_WAYPOINTS).contains(&raw.waypoints.len()) {
+    if !(2..=run::MAX_WAYPOINTS).contains(&raw.waypoints.len()) {
         return Err(c.err(
             "route.waypoints",
             format!(
                 "2 ..= {} waypoints (the start and a goal at least)",
-                campaign::MAX_WAYPOINTS
+                run::MAX_WAYPOINTS
             ),
             raw.waypoints.len(),
         ));

@@ -26,7 +26,7 @@ fn toml_path(field: &str) -> String {
 ///
 /// # Errors
 /// A [`ScenarioError`] naming the first `rover.…` field at fault.
-pub(crate) fn rover_params(
+pub(crate) fn rover_settings(
     c: &FieldCheck<'_>,
     r: &RawRover,
     errors: ErrorModel,

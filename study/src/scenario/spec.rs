@@ -1,6 +1,8 @@
 //! [`ScenarioSpec`]: a scenario file read and checked field by field, before its maps are
 //! read — stage one of `Scenario::load`. Each section of the file has its own loader (a
-//! sibling module); this one runs them in the file's order and keeps what they return.
+//! sibling module); this one runs them in a fixed order (the order the loader has always checked
+//! the sections in, so a file with several faults reports the same first one) and keeps what
+//! they return.
 
 use std::path::{Path, PathBuf};
 
@@ -125,8 +127,8 @@ impl ScenarioSpec {
         Self::validate(path, raw, crate::input::sha256_hex(text.as_bytes()))
     }
 
-    /// Every section through its loader, in the file's order; the first field at fault is
-    /// the error.
+    /// Every section through its loader, in the loader's fixed order (see the module doc); the
+    /// first field at fault is the error.
     fn validate(path: &Path, raw: RawScenario, sha256: String) -> Result<Self, ScenarioError> {
         let c = FieldCheck { path };
         // The name becomes output file and directory names (`solsim-out/NAME/`): `.` and `..`
@@ -135,8 +137,8 @@ impl ScenarioSpec {
             return Err(c.err("name", expected, format!("{:?}", raw.name)));
         }
         let errors = errors::error_model(&c, &raw.errors)?;
-        let rover = rover::rover_params(&c, &raw.rover, errors)?;
-        let grid = grid::grid_params(&c, &raw.grid, &raw.rover, &rover)?;
+        let rover = rover::rover_settings(&c, &raw.rover, errors)?;
+        let grid = grid::grid_settings(&c, &raw.grid, &raw.rover, &rover)?;
         let model = uncertainty::uncertainty_model(&c, &raw.uncertainty)?;
         let onboard = onboard_localization::onboard_localization(&c, &raw.onboard_localization)?;
         let drive_window = operations::drive_window(&c, &raw.operations)?;

@@ -91,9 +91,7 @@ impl ProfileSlip {
     pub fn derived_avoid_slip_above(slip_limit: f64, slip_sigma_relative: f64) -> f64 {
         slip_limit / (1.0 + 2.0 * slip_sigma_relative)
     }
-}
 
-impl ProfileSlip {
     /// The slip limits a drive may have, fraction: below 5 % the check would stop drives on
     /// level soil, whose mean slip is 4 % ([`ErrorModel::calibrated`]); near 100 % the rover
     /// makes no progress before the check trips.
@@ -190,5 +188,23 @@ impl Default for RoverSettings {
             errors: ErrorModel::calibrated(),
             slip_model: SlipModel::Terrain,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The shortest step at the fastest rate covers a whole sol within the loop bound, so
+    /// [`crate::rover::autonav::MAX_STEPS_PER_SOL`] never ends an in-range drive early.
+    #[test]
+    fn the_step_bound_holds_a_whole_sol_at_the_fastest_rate() {
+        let metres =
+            RoverSettings::DRIVE_RATE_RANGE_M_PER_H.max * f64::from(crate::time::SOL_S) / 3_600.0;
+        let steps = metres / RoverSettings::STEP_RANGE_M.min;
+        assert!(
+            steps < crate::rover::autonav::MAX_STEPS_PER_SOL as f64,
+            "{steps}"
+        );
     }
 }
