@@ -13,7 +13,7 @@ use std::process::Command;
 
 use crate::common::{external, root};
 
-pub(crate) fn python3() -> Option<&'static str> {
+fn python3() -> Option<&'static str> {
     Command::new("python3")
         .arg("--version")
         .output()
@@ -52,24 +52,34 @@ fn the_workspace_keeps_the_architecture_rules() {
 }
 
 /// A copy of a crate with a circle, a long file and a fat binary: the script names each.
-#[test]
-fn the_check_catches_a_circle_a_long_file_and_a_fat_binary() {
+/// A planted workspace for the check (one crate, `a`), or `None` when python3 is missing
+/// (counted by the external-check gate).
+pub(crate) fn planted_tree() -> Option<tempfile::TempDir> {
     if python3().is_none() {
         external::unavailable(
             "the architecture check",
             "python3 is not on PATH",
             "apt-get install python3",
         );
-        return;
+        return None;
     }
     let dir = tempfile::tempdir().expect("temp dir");
+    plant(dir.path(), "Cargo.toml", "[workspace]\nmembers = [\"a\"]\n");
+    Some(dir)
+}
+
+/// Writes `text` at `p` under the planted tree `d`, making its folders.
+pub(crate) fn plant(d: &Path, p: &str, text: &str) {
+    let path = d.join(p);
+    std::fs::create_dir_all(path.parent().expect("parent")).expect("mkdir");
+    std::fs::write(path, text).expect("write");
+}
+
+#[test]
+fn the_check_catches_a_circle_a_long_file_and_a_fat_binary() {
+    let Some(dir) = planted_tree() else { return };
     let d = dir.path();
-    let write = |p: &str, text: &str| {
-        let path = d.join(p);
-        std::fs::create_dir_all(path.parent().expect("parent")).expect("mkdir");
-        std::fs::write(path, text).expect("write");
-    };
-    write("Cargo.toml", "[workspace]\nmembers = [\"a\"]\n");
+    let write = |p: &str, text: &str| plant(d, p, text);
     write("a/src/lib.rs", "mod x;\nmod y;\nmod long;\n");
     write("a/src/x.rs", "use crate::y::Y;\npub struct X;\n");
     // `super::x::X` from y: a circle x -> y -> x.

@@ -5,27 +5,13 @@
 //! test items themselves are left out, test modules in their own files too, and strings are
 //! blanked whatever they hold.
 
-use crate::common::external;
-use crate::issue_29_architecture::{architecture_check, python3};
+use crate::issue_29_architecture::{architecture_check, plant, planted_tree};
 
 #[test]
 fn a_test_item_hides_only_itself() {
-    if python3().is_none() {
-        external::unavailable(
-            "the architecture check",
-            "python3 is not on PATH",
-            "apt-get install python3",
-        );
-        return;
-    }
-    let dir = tempfile::tempdir().expect("temp dir");
+    let Some(dir) = planted_tree() else { return };
     let d = dir.path();
-    let write = |p: &str, text: &str| {
-        let path = d.join(p);
-        std::fs::create_dir_all(path.parent().expect("parent")).expect("mkdir");
-        std::fs::write(path, text).expect("write");
-    };
-    write("Cargo.toml", "[workspace]\nmembers = [\"a\"]\n");
+    let write = |p: &str, text: &str| plant(d, p, text);
     write(
         "a/src/lib.rs",
         "mod early;\nmod x;\nmod y;\nmod s;\nmod u;\n#[cfg(test)]\nmod t;\n",
